@@ -1,0 +1,1 @@
+//! Holder crate for the workspace's benchmarks and report binaries.

@@ -1,0 +1,1 @@
+//! Holder crate for the workspace's integration tests; see `main.rs`.
