@@ -14,9 +14,11 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod bivariate;
 mod ops;
 mod scalar;
 mod univariate;
 
+pub use crate::bivariate::{BiPoly, Monomial, QBiPoly};
 pub use crate::scalar::{F64_NEGLIGIBLE_REL, Rat, Scalar, rat_from_f64, rat_to_f64};
 pub use crate::univariate::{Bounded, Poly, QPoly, gamma};
