@@ -1,1 +1,3 @@
+//! The `render` command line: renders a scene file to a PNG (filled in with the tracer).
+
 fn main() {}

@@ -1,0 +1,538 @@
+//! [`Poly3`]: sparse trivariate polynomials `F(x, y, z)` with `f64` coefficients, and their
+//! restriction to a line, `t ↦ F(o + t·d)`, as a univariate [`poly::Poly`].
+//!
+//! This is the `F` of Stam's eq. 3.2, `F = Σ a_ijk x^i y^j z^k`. Restricting it to a ray
+//! (Stam §3.2.1, eq. 3.7–3.8, done there by a coordinate change) is the one step every implicit
+//! surface shares; see `paper-notes/implicit-surfaces.md`.
+
+use std::fmt;
+use std::ops::{Add, Mul, Neg, Sub};
+
+use glam::DVec3;
+use poly::Poly;
+
+/// One monomial `coeff · x^e[0] · y^e[1] · z^e[2]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Term3 {
+    /// The coefficient, non-zero in a normalised [`Poly3`].
+    pub coeff: f64,
+    /// Exponents of `x`, `y`, `z`.
+    pub exps: [u32; 3],
+}
+
+impl Term3 {
+    /// Total degree `e[0] + e[1] + e[2]`.
+    pub fn degree(&self) -> u32 {
+        self.exps.iter().sum()
+    }
+}
+
+/// A sparse trivariate polynomial with `f64` coefficients.
+///
+/// Invariant (kept by every constructor and operation): terms are sorted by exponent triple
+/// (lexicographic on `(x, y, z)` exponents), no two terms share an exponent triple, and no
+/// coefficient is exactly zero. The zero polynomial has no terms.
+///
+/// # Examples
+/// ```
+/// use render::Poly3;
+/// use glam::DVec3;
+/// // Stam's torus (Annexe B `Polynomial`): (x²+y²−1)(x²+y²−9) + 15z².
+/// let (x, y, z) = (Poly3::x(), Poly3::y(), Poly3::z());
+/// let r2 = &(&x * &x) + &(&y * &y);
+/// let f = &(&(&r2 - &Poly3::constant(1.0)) * &(&r2 - &Poly3::constant(9.0)))
+///     + &(&(&z * &z) * 15.0);
+/// assert_eq!(f.degree(), 4);
+/// assert_eq!(f.eval(DVec3::new(1.0, 0.0, 0.0)), 0.0);
+/// // Along the x axis from the origin: (t² − 1)(t² − 9).
+/// let line = f.restrict_to_line(DVec3::ZERO, DVec3::X);
+/// assert_eq!(line.coeffs(), &[9.0, 0.0, -10.0, 0.0, 1.0]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Poly3 {
+    terms: Vec<Term3>,
+}
+
+impl Poly3 {
+    /// Builds `Σ coeff · x^i y^j z^k` from `(coeff, [i, j, k])` pairs in any order: equal
+    /// exponent triples are summed and zero coefficients dropped.
+    pub fn from_terms(terms: impl IntoIterator<Item = (f64, [u32; 3])>) -> Self {
+        let mut v: Vec<Term3> = terms
+            .into_iter()
+            .map(|(coeff, exps)| Term3 { coeff, exps })
+            .collect();
+        v.sort_by_key(|a| a.exps);
+        let mut out: Vec<Term3> = Vec::with_capacity(v.len());
+        for t in v {
+            match out.last_mut() {
+                Some(last) if last.exps == t.exps => last.coeff += t.coeff,
+                _ => out.push(t),
+            }
+        }
+        out.retain(|t| t.coeff != 0.0);
+        Poly3 { terms: out }
+    }
+
+    /// The zero polynomial.
+    pub fn zero() -> Self {
+        Poly3 { terms: Vec::new() }
+    }
+
+    /// The constant `c`.
+    pub fn constant(c: f64) -> Self {
+        Self::from_terms([(c, [0, 0, 0])])
+    }
+
+    /// The variable `x`.
+    pub fn x() -> Self {
+        Self::from_terms([(1.0, [1, 0, 0])])
+    }
+
+    /// The variable `y`.
+    pub fn y() -> Self {
+        Self::from_terms([(1.0, [0, 1, 0])])
+    }
+
+    /// The variable `z`.
+    pub fn z() -> Self {
+        Self::from_terms([(1.0, [0, 0, 1])])
+    }
+
+    /// The terms, sorted by exponent triple, coefficients non-zero.
+    pub fn terms(&self) -> &[Term3] {
+        &self.terms
+    }
+
+    /// True for the zero polynomial.
+    pub fn is_zero(&self) -> bool {
+        self.terms.is_empty()
+    }
+
+    /// True when every coefficient is finite.
+    pub fn is_finite(&self) -> bool {
+        self.terms.iter().all(|t| t.coeff.is_finite())
+    }
+
+    /// Total degree (0 for constants and for the zero polynomial).
+    pub fn degree(&self) -> u32 {
+        self.terms.iter().map(Term3::degree).max().unwrap_or(0)
+    }
+
+    /// Highest exponent of each variable.
+    pub fn partial_degrees(&self) -> [u32; 3] {
+        let mut d = [0; 3];
+        for t in &self.terms {
+            for (dk, ek) in d.iter_mut().zip(t.exps) {
+                *dk = (*dk).max(ek);
+            }
+        }
+        d
+    }
+
+    /// `self^k` by repeated squaring (`self^0 = 1`).
+    pub fn pow(&self, k: u32) -> Self {
+        let mut result = Poly3::constant(1.0);
+        let mut base = self.clone();
+        let mut k = k;
+        while k > 0 {
+            if k & 1 == 1 {
+                result = &result * &base;
+            }
+            k >>= 1;
+            if k > 0 {
+                base = &base * &base;
+            }
+        }
+        result
+    }
+
+    /// `∂F/∂x_axis` (`axis` 0, 1, 2 for x, y, z).
+    ///
+    /// # Panics
+    /// If `axis > 2` (a caller bug).
+    pub fn derivative(&self, axis: usize) -> Self {
+        assert!(axis < 3, "axis must be 0, 1 or 2, got {axis}");
+        Self::from_terms(self.terms.iter().filter(|t| t.exps[axis] > 0).map(|t| {
+            let mut e = t.exps;
+            e[axis] -= 1;
+            (t.coeff * f64::from(t.exps[axis]), e)
+        }))
+    }
+
+    /// The gradient `∇F` as three polynomials (Stam eq. 3.24).
+    pub fn gradient_polys(&self) -> [Poly3; 3] {
+        [self.derivative(0), self.derivative(1), self.derivative(2)]
+    }
+
+    /// `F(p)`, term by term with `powi`.
+    ///
+    /// # Accuracy
+    /// Each term rounds a few times; the absolute error is at most about
+    /// `γ(d + 2)·Σ|a_ijk||x|^i|y|^j|z|^k` for total degree `d` (see [`Poly3::eval_abs`] for
+    /// the sum).
+    pub fn eval(&self, p: DVec3) -> f64 {
+        self.terms
+            .iter()
+            .map(|t| {
+                t.coeff
+                    * p.x.powi(t.exps[0] as i32)
+                    * p.y.powi(t.exps[1] as i32)
+                    * p.z.powi(t.exps[2] as i32)
+            })
+            .sum()
+    }
+
+    /// `Σ|a_ijk||x|^i|y|^j|z|^k`: the scale against which `F(p)` is negligible or not.
+    pub fn eval_abs(&self, p: DVec3) -> f64 {
+        self.terms
+            .iter()
+            .map(|t| {
+                t.coeff.abs()
+                    * p.x.abs().powi(t.exps[0] as i32)
+                    * p.y.abs().powi(t.exps[1] as i32)
+                    * p.z.abs().powi(t.exps[2] as i32)
+            })
+            .sum()
+    }
+
+    /// `G(x, y, z) = F(A·(x, y, z) + b)` for a 3×3 matrix `A` (columns) and offset `b`:
+    /// the same surface seen through an affine change of coordinates.
+    pub fn compose_affine(&self, a: glam::DMat3, b: DVec3) -> Self {
+        let lin = |row: usize| {
+            let r = a.row(row);
+            &(&(&Poly3::x() * r.x) + &(&Poly3::y() * r.y))
+                + &(&(&Poly3::z() * r.z) + &Poly3::constant(b[row]))
+        };
+        let subs = [lin(0), lin(1), lin(2)];
+        let mut pows: [Vec<Poly3>; 3] = Default::default();
+        let deg = self.partial_degrees();
+        for k in 0..3 {
+            pows[k].push(Poly3::constant(1.0));
+            for e in 1..=deg[k] as usize {
+                let next = &pows[k][e - 1] * &subs[k];
+                pows[k].push(next);
+            }
+        }
+        let mut out = Poly3::zero();
+        for t in &self.terms {
+            let m = &(&pows[0][t.exps[0] as usize] * &pows[1][t.exps[1] as usize])
+                * &pows[2][t.exps[2] as usize];
+            out = &out + &(&m * t.coeff);
+        }
+        out
+    }
+
+    /// The restriction `t ↦ F(o + t·d)` as a univariate polynomial, coefficients low → high
+    /// (Stam eq. 3.7–3.8). Allocates; the tracer uses [`Poly3::restrict_into`].
+    pub fn restrict_to_line(&self, o: DVec3, d: DVec3) -> Poly<f64> {
+        let mut scratch = RestrictScratch::default();
+        let mut out = Vec::new();
+        self.restrict_into(o, d, &mut scratch, &mut out);
+        Poly::new(out)
+    }
+
+    /// [`Poly3::restrict_to_line`] into a caller-owned buffer (cleared first; trailing zeros
+    /// are not trimmed), reusing `scratch` so the hot loop does not allocate.
+    ///
+    /// # Accuracy
+    /// Each coefficient is a sum of products of `a_ijk` with binomial terms
+    /// `C(e, m)·o^(e−m)·d^m`; the rounding error of coefficient `c_m` is a few `γ(d + 3)` times
+    /// the same sum taken in absolute values. It is small when `o` is near the surface, which is
+    /// why callers move the ray origin to the bounding-box entry first
+    /// (`paper-notes/implicit-surfaces.md` §2).
+    ///
+    /// # Complexity
+    /// `O(n·d²)` for `n` terms of total degree at most `d`.
+    pub fn restrict_into(
+        &self,
+        o: DVec3,
+        d: DVec3,
+        scratch: &mut RestrictScratch,
+        out: &mut Vec<f64>,
+    ) {
+        let deg = self.partial_degrees();
+        let total = self.degree() as usize;
+        out.clear();
+        out.resize(total + 1, 0.0);
+        // Power tables: row e of axis k holds the coefficients of (o_k + d_k t)^e, stored
+        // flat at offset e(e+1)/2 (row e has e + 1 entries).
+        for k in 0..3 {
+            linear_powers(o[k], d[k], deg[k] as usize, &mut scratch.powers[k]);
+        }
+        // Group the sorted terms by (i, j): sum the z parts first, then multiply once by the
+        // x and y powers.
+        let terms = &self.terms;
+        let mut start = 0;
+        while start < terms.len() {
+            let [i, j, _] = terms[start].exps;
+            let mut end = start;
+            let zdeg = deg[2] as usize;
+            scratch.zsum.clear();
+            scratch.zsum.resize(zdeg + 1, 0.0);
+            let mut zmax = 0;
+            while end < terms.len() && terms[end].exps[0] == i && terms[end].exps[1] == j {
+                let t = terms[end];
+                let zr = row(&scratch.powers[2], t.exps[2]);
+                for (s, c) in scratch.zsum.iter_mut().zip(zr) {
+                    *s += t.coeff * c;
+                }
+                zmax = zmax.max(t.exps[2] as usize);
+                end += 1;
+            }
+            let xr = row(&scratch.powers[0], i);
+            let yr = row(&scratch.powers[1], j);
+            scratch.xy.clear();
+            scratch.xy.resize(xr.len() + yr.len() - 1, 0.0);
+            for (a, xa) in xr.iter().enumerate() {
+                for (b, yb) in yr.iter().enumerate() {
+                    scratch.xy[a + b] += xa * yb;
+                }
+            }
+            for (a, xya) in scratch.xy.iter().enumerate() {
+                for (b, zb) in scratch.zsum[..=zmax].iter().enumerate() {
+                    out[a + b] += xya * zb;
+                }
+            }
+            start = end;
+        }
+    }
+
+    /// `c·F`.
+    pub fn scale(&self, c: f64) -> Self {
+        Self::from_terms(self.terms.iter().map(|t| (t.coeff * c, t.exps)))
+    }
+}
+
+/// Reusable buffers for [`Poly3::restrict_into`].
+#[derive(Clone, Debug, Default)]
+pub struct RestrictScratch {
+    powers: [Vec<f64>; 3],
+    zsum: Vec<f64>,
+    xy: Vec<f64>,
+}
+
+/// Row `e` of a power table built by [`linear_powers`].
+fn row(table: &[f64], e: u32) -> &[f64] {
+    let e = e as usize;
+    let start = e * (e + 1) / 2;
+    &table[start..start + e + 1]
+}
+
+/// Rows `(o + d·t)^e` for `e = 0..=max`, flat, row `e` at offset `e(e+1)/2`, low → high.
+fn linear_powers(o: f64, d: f64, max: usize, table: &mut Vec<f64>) {
+    table.clear();
+    table.push(1.0);
+    for e in 1..=max {
+        let prev = (e - 1) * e / 2;
+        // (o + d t)·row_{e−1}: c_m = o·p_m + d·p_{m−1}.
+        for m in 0..=e {
+            let pm = if m < e { table[prev + m] } else { 0.0 };
+            let pm1 = if m > 0 { table[prev + m - 1] } else { 0.0 };
+            table.push(o * pm + d * pm1);
+        }
+    }
+}
+
+impl Add for &Poly3 {
+    type Output = Poly3;
+    fn add(self, rhs: &Poly3) -> Poly3 {
+        Poly3::from_terms(
+            self.terms
+                .iter()
+                .chain(&rhs.terms)
+                .map(|t| (t.coeff, t.exps)),
+        )
+    }
+}
+
+impl Sub for &Poly3 {
+    type Output = Poly3;
+    fn sub(self, rhs: &Poly3) -> Poly3 {
+        Poly3::from_terms(
+            self.terms
+                .iter()
+                .map(|t| (t.coeff, t.exps))
+                .chain(rhs.terms.iter().map(|t| (-t.coeff, t.exps))),
+        )
+    }
+}
+
+impl Mul for &Poly3 {
+    type Output = Poly3;
+    fn mul(self, rhs: &Poly3) -> Poly3 {
+        let mut prods = Vec::with_capacity(self.terms.len() * rhs.terms.len());
+        for a in &self.terms {
+            for b in &rhs.terms {
+                let e = [
+                    a.exps[0] + b.exps[0],
+                    a.exps[1] + b.exps[1],
+                    a.exps[2] + b.exps[2],
+                ];
+                prods.push((a.coeff * b.coeff, e));
+            }
+        }
+        Poly3::from_terms(prods)
+    }
+}
+
+impl Mul<f64> for &Poly3 {
+    type Output = Poly3;
+    fn mul(self, rhs: f64) -> Poly3 {
+        self.scale(rhs)
+    }
+}
+
+impl Neg for &Poly3 {
+    type Output = Poly3;
+    fn neg(self) -> Poly3 {
+        self.scale(-1.0)
+    }
+}
+
+macro_rules! forward_owned_binop {
+    ($tr:ident, $m:ident) => {
+        impl $tr for Poly3 {
+            type Output = Poly3;
+            fn $m(self, rhs: Poly3) -> Poly3 {
+                (&self).$m(&rhs)
+            }
+        }
+        impl $tr<&Poly3> for Poly3 {
+            type Output = Poly3;
+            fn $m(self, rhs: &Poly3) -> Poly3 {
+                (&self).$m(rhs)
+            }
+        }
+        impl $tr<Poly3> for &Poly3 {
+            type Output = Poly3;
+            fn $m(self, rhs: Poly3) -> Poly3 {
+                self.$m(&rhs)
+            }
+        }
+    };
+}
+forward_owned_binop!(Add, add);
+forward_owned_binop!(Sub, sub);
+forward_owned_binop!(Mul, mul);
+
+impl Mul<f64> for Poly3 {
+    type Output = Poly3;
+    fn mul(self, rhs: f64) -> Poly3 {
+        self.scale(rhs)
+    }
+}
+
+impl Neg for Poly3 {
+    type Output = Poly3;
+    fn neg(self) -> Poly3 {
+        self.scale(-1.0)
+    }
+}
+
+impl fmt::Display for Poly3 {
+    /// Highest-degree terms first, e.g. `x^2*y + 3*z - 1`; `0` for the zero polynomial.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.terms.is_empty() {
+            return write!(f, "0");
+        }
+        let mut sorted: Vec<&Term3> = self.terms.iter().collect();
+        sorted.sort_by(|a, b| b.degree().cmp(&a.degree()).then(b.exps.cmp(&a.exps)));
+        for (n, t) in sorted.iter().enumerate() {
+            let (sign, c) = if t.coeff < 0.0 {
+                ("-", -t.coeff)
+            } else {
+                ("+", t.coeff)
+            };
+            if n == 0 {
+                if sign == "-" {
+                    write!(f, "-")?;
+                }
+            } else {
+                write!(f, " {sign} ")?;
+            }
+            let mut factors: Vec<String> = Vec::new();
+            if c != 1.0 || t.degree() == 0 {
+                factors.push(format!("{c}"));
+            }
+            for (name, e) in ["x", "y", "z"].iter().zip(t.exps) {
+                match e {
+                    0 => {}
+                    1 => factors.push((*name).to_string()),
+                    _ => factors.push(format!("{name}^{e}")),
+                }
+            }
+            write!(f, "{}", factors.join("*"))?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn torus(major: f64, minor: f64) -> Poly3 {
+        // (x²+y²+z²+R²−r²)² − 4R²(x²+y²)
+        let (x, y, z) = (Poly3::x(), Poly3::y(), Poly3::z());
+        let rho2 = &(&x * &x) + &(&y * &y);
+        let s = &(&rho2 + &(&z * &z)) + &Poly3::constant(major * major - minor * minor);
+        &s.pow(2) - &(&rho2 * (4.0 * major * major))
+    }
+
+    #[test]
+    fn from_terms_merges_and_drops_zeros() {
+        let p = Poly3::from_terms([(1.0, [1, 0, 0]), (2.0, [0, 0, 1]), (-1.0, [1, 0, 0])]);
+        assert_eq!(p.terms().len(), 1, "x − x cancels: {p}");
+        assert_eq!(p.to_string(), "2*z", "display");
+        assert_eq!(Poly3::zero().degree(), 0, "zero has degree 0");
+    }
+
+    #[test]
+    fn torus_expansion_has_ten_terms() {
+        let t = torus(2.0, 1.0);
+        assert_eq!(t.degree(), 4, "quartic");
+        assert_eq!(t.terms().len(), 10, "{t}");
+        assert_eq!(t.eval(DVec3::new(3.0, 0.0, 0.0)), 0.0, "outer equator");
+        assert_eq!(t.eval(DVec3::new(0.0, 2.0, 1.0)), 0.0, "top of the tube");
+    }
+
+    #[test]
+    fn restriction_matches_pointwise_evaluation() {
+        let f = torus(2.0, 0.5);
+        let (o, d) = (DVec3::new(0.3, -6.0, 2.5), DVec3::new(0.1, 1.0, -0.4));
+        let line = f.restrict_to_line(o, d);
+        assert_eq!(line.degree(), 4, "a quartic along a generic line");
+        for t in [-1.0, 0.0, 0.5, 2.0, 7.5] {
+            let direct = f.eval(o + d * t);
+            let via = line.eval(&t);
+            let scale = f.eval_abs(o + d * t).max(1.0);
+            assert!(
+                (direct - via).abs() <= 1e-12 * scale,
+                "t = {t}: direct {direct}, restricted {via}"
+            );
+        }
+    }
+
+    #[test]
+    fn derivative_and_compose_affine() {
+        let f = torus(2.0, 1.0);
+        let g = f.gradient_polys();
+        let p = DVec3::new(3.0, 0.0, 0.0);
+        assert_eq!(
+            g[0].eval(p),
+            4.0 * 3.0 * (9.0 + 3.0) - 8.0 * 4.0 * 3.0,
+            "∂F/∂x at (3,0,0)"
+        );
+        // Shift by (1, 2, 3): G(p) = F(p + b).
+        let b = DVec3::new(1.0, 2.0, 3.0);
+        let shifted = f.compose_affine(glam::DMat3::IDENTITY, b);
+        let q = DVec3::new(0.25, -0.5, 0.75);
+        assert!(
+            (shifted.eval(q) - f.eval(q + b)).abs() < 1e-9,
+            "G(q) = F(q + b)"
+        );
+        assert_eq!((&f - &f).terms().len(), 0, "F − F = 0");
+        assert_eq!(Poly3::x().pow(3).degree(), 3, "x³");
+    }
+}
