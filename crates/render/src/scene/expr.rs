@@ -1,0 +1,329 @@
+//! Expressions of the scene language, and their meaning: constant values (`f64`) and
+//! polynomials in x, y, z ([`Poly3`]).
+//!
+//! Every numeric value in a scene file is an [`Expr`]: `0.5`, `-8`, `3/2`, `sqrt(2)/2`, or a
+//! name defined earlier in the block with `Let name = …`. The `Equation` of an
+//! `ALGEBRAIC_SURFACE` is an expression in the variables `x`, `y`, `z` as well, and is
+//! expanded here into the sum of monomials `Σ a_ijk x^i y^j z^k` the tracer restricts to each
+//! ray (Stam §3.2.1, which had to hard-code `F`; `paper-notes/scene-language.md` §5).
+//!
+//! The expansion refuses anything that is not a polynomial, naming the offending token:
+//! division by an expression in x, y, z, a negative or fractional exponent of one, `sqrt` of
+//! one, an exponent that is not a constant. Constant sub-expressions follow ordinary `f64`
+//! arithmetic (any real exponent, `sqrt`), and must stay finite and real.
+
+use super::error::{ErrorKind, SceneError, Span};
+use super::syntax::Spanned;
+use crate::poly3::Poly3;
+
+/// The highest total degree an `Equation` may have.
+///
+/// Derivation: expanding a product of two polynomials of degrees `a` and `b` costs
+/// `C(a+3,3)·C(b+3,3)` term products; with `a + b ≤ 32` the worst case (`a = b = 16`) is
+/// about 10⁶, a fraction of a second even for adversarial input. Stam's Sturm code was stable
+/// only below degree 9 (§5); degree 32 is far beyond anything that renders cleanly in `f64`,
+/// so the limit costs no real scene anything.
+pub const MAX_EQUATION_DEGREE: u32 = 32;
+
+/// A binary operator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BinOp {
+    /// `+`
+    Add,
+    /// `-`
+    Sub,
+    /// `*`
+    Mul,
+    /// `/`
+    Div,
+    /// `^`
+    Pow,
+}
+
+impl BinOp {
+    /// The operator as written.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            BinOp::Add => "+",
+            BinOp::Sub => "-",
+            BinOp::Mul => "*",
+            BinOp::Div => "/",
+            BinOp::Pow => "^",
+        }
+    }
+}
+
+/// One of the three variables of an `Equation`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Axis {
+    /// `x`
+    X,
+    /// `y`
+    Y,
+    /// `z`
+    Z,
+}
+
+impl Axis {
+    /// The variable's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Axis::X => "x",
+            Axis::Y => "y",
+            Axis::Z => "z",
+        }
+    }
+}
+
+/// An expression: a kind and the place of its first token.
+///
+/// Equality compares what the expressions say, not where they were written (see
+/// [`Spanned`]).
+#[derive(Clone, Debug)]
+pub struct Expr {
+    /// What the expression is.
+    pub kind: ExprKind,
+    /// Where its first token is.
+    pub span: Span,
+}
+
+impl PartialEq for Expr {
+    fn eq(&self, other: &Self) -> bool {
+        self.kind == other.kind
+    }
+}
+
+/// The kinds of expression. Parentheses leave no trace: the tree records the grouping.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ExprKind {
+    /// A literal, always non-negative and finite (a leading `-` is [`ExprKind::Neg`]).
+    Number(f64),
+    /// `x`, `y` or `z`.
+    Var(Axis),
+    /// A constant defined with `Let`, as written (names compare case-insensitively).
+    Name(String),
+    /// `-e`
+    Neg(Box<Expr>),
+    /// `lhs op rhs`; the operator keeps its own span for messages.
+    Binary {
+        /// The operator.
+        op: Spanned<BinOp>,
+        /// Left operand.
+        lhs: Box<Expr>,
+        /// Right operand.
+        rhs: Box<Expr>,
+    },
+    /// `sqrt(e)`
+    Sqrt(Box<Expr>),
+}
+
+/// The `Let` constants visible at a point of a block, in definition order.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Constants {
+    defs: Vec<(String, f64)>,
+}
+
+impl Constants {
+    /// The value of `name` (case-insensitive), if defined.
+    pub(crate) fn get(&self, name: &str) -> Option<f64> {
+        self.defs
+            .iter()
+            .rev()
+            .find(|(n, _)| n.eq_ignore_ascii_case(name))
+            .map(|&(_, v)| v)
+    }
+
+    /// Defines `name`; the caller has checked it is new.
+    pub(crate) fn define(&mut self, name: &str, value: f64) {
+        self.defs.push((name.to_owned(), value));
+    }
+}
+
+/// Evaluates a constant expression (no x, y, z) to a finite `f64`.
+pub(crate) fn eval_const(e: &Expr, env: &Constants) -> Result<f64, SceneError> {
+    let p = expand_in(e, env, false)?;
+    // With variables refused, the expansion is a constant.
+    Ok(constant_value(&p).unwrap_or(0.0))
+}
+
+/// Expands an `Equation` into `Σ a_ijk x^i y^j z^k`, refusing non-polynomial input and any
+/// total degree above [`MAX_EQUATION_DEGREE`].
+///
+/// # Accuracy
+/// Coefficients are computed in `f64` in the order the expression dictates; integer and
+/// dyadic coefficients of moderate size (as in every scene in `scenes/`) come out exact,
+/// others carry the usual rounding of a few operations each.
+pub(crate) fn expand(e: &Expr, env: &Constants) -> Result<Poly3, SceneError> {
+    expand_in(e, env, true)
+}
+
+/// The value of a polynomial of degree 0 (the zero polynomial has no terms).
+fn constant_value(p: &Poly3) -> Option<f64> {
+    (p.degree() == 0).then(|| p.terms().first().map_or(0.0, |t| t.coeff))
+}
+
+fn arithmetic(span: &Span, reason: impl Into<String>) -> SceneError {
+    SceneError::at(
+        span,
+        ErrorKind::Arithmetic {
+            reason: reason.into(),
+        },
+    )
+}
+
+fn not_polynomial(span: &Span, reason: impl Into<String>) -> SceneError {
+    SceneError::at(
+        span,
+        ErrorKind::NotPolynomial {
+            reason: reason.into(),
+        },
+    )
+}
+
+fn degree_check(span: &Span, degree: u64) -> Result<(), SceneError> {
+    if degree > u64::from(MAX_EQUATION_DEGREE) {
+        return Err(SceneError::at(
+            span,
+            ErrorKind::DegreeTooHigh {
+                degree,
+                max: MAX_EQUATION_DEGREE,
+            },
+        ));
+    }
+    Ok(())
+}
+
+/// A finite result or an overflow error at `span`.
+fn finite(p: Poly3, span: &Span) -> Result<Poly3, SceneError> {
+    if p.is_finite() {
+        Ok(p)
+    } else {
+        Err(arithmetic(span, "overflow: the result is not finite"))
+    }
+}
+
+/// Divides every coefficient by `d` (dividing rather than multiplying by `1/d` keeps `x/3`
+/// correctly rounded).
+fn divide(p: &Poly3, d: f64) -> Poly3 {
+    Poly3::from_terms(p.terms().iter().map(|t| (t.coeff / d, t.exps)))
+}
+
+fn expand_in(e: &Expr, env: &Constants, vars: bool) -> Result<Poly3, SceneError> {
+    match &e.kind {
+        ExprKind::Number(v) => Ok(Poly3::constant(*v)),
+        ExprKind::Var(axis) => {
+            if !vars {
+                return Err(SceneError::at(
+                    &e.span,
+                    ErrorKind::VariableInConstant {
+                        name: axis.name().to_owned(),
+                    },
+                ));
+            }
+            Ok(match axis {
+                Axis::X => Poly3::x(),
+                Axis::Y => Poly3::y(),
+                Axis::Z => Poly3::z(),
+            })
+        }
+        ExprKind::Name(name) => match env.get(name) {
+            Some(v) => Ok(Poly3::constant(v)),
+            None => Err(SceneError::at(
+                &e.span,
+                ErrorKind::UnknownName { name: name.clone() },
+            )),
+        },
+        ExprKind::Neg(inner) => Ok(-expand_in(inner, env, vars)?),
+        ExprKind::Sqrt(inner) => {
+            let p = expand_in(inner, env, vars)?;
+            let Some(v) = constant_value(&p) else {
+                return Err(not_polynomial(
+                    &inner.span,
+                    "`sqrt` of an expression in x, y, z",
+                ));
+            };
+            if v < 0.0 {
+                return Err(arithmetic(
+                    &inner.span,
+                    format!("square root of a negative number ({v})"),
+                ));
+            }
+            Ok(Poly3::constant(v.sqrt()))
+        }
+        ExprKind::Binary { op, lhs, rhs } => {
+            let a = expand_in(lhs, env, vars)?;
+            let b = expand_in(rhs, env, vars)?;
+            let span = &op.span;
+            match op.value {
+                BinOp::Add => finite(&a + &b, span),
+                BinOp::Sub => finite(&a - &b, span),
+                BinOp::Mul => {
+                    degree_check(span, u64::from(a.degree()) + u64::from(b.degree()))?;
+                    let p = match (constant_value(&a), constant_value(&b)) {
+                        (Some(c), _) => b.scale(c),
+                        (_, Some(c)) => a.scale(c),
+                        (None, None) => &a * &b,
+                    };
+                    finite(p, span)
+                }
+                BinOp::Div => {
+                    let Some(d) = constant_value(&b) else {
+                        return Err(not_polynomial(
+                            &rhs.span,
+                            "division by an expression in x, y, z",
+                        ));
+                    };
+                    if d == 0.0 {
+                        return Err(arithmetic(&rhs.span, "division by zero"));
+                    }
+                    finite(divide(&a, d), span)
+                }
+                BinOp::Pow => {
+                    let Some(k) = constant_value(&b) else {
+                        return Err(not_polynomial(
+                            &rhs.span,
+                            "an exponent must be a constant, not an expression in x, y, z",
+                        ));
+                    };
+                    if let Some(base) = constant_value(&a) {
+                        let v = base.powf(k);
+                        if v.is_nan() {
+                            return Err(arithmetic(
+                                span,
+                                format!("`{base}^{k}` is not a real number"),
+                            ));
+                        }
+                        return finite(Poly3::constant(v), span);
+                    }
+                    if k < 0.0 {
+                        return Err(not_polynomial(
+                            &rhs.span,
+                            format!("negative exponent {k} of an expression in x, y, z"),
+                        ));
+                    }
+                    if k.fract() != 0.0 {
+                        return Err(not_polynomial(
+                            &rhs.span,
+                            format!(
+                                "exponent {k} of an expression in x, y, z is not a whole number"
+                            ),
+                        ));
+                    }
+                    // `a` has degree ≥ 1 here, so k ≤ degree(a)·k is checked against the limit
+                    // before it is converted.
+                    let degree = f64::from(a.degree()) * k;
+                    if degree > f64::from(MAX_EQUATION_DEGREE) {
+                        return Err(SceneError::at(
+                            span,
+                            ErrorKind::DegreeTooHigh {
+                                degree: degree.min(u64::MAX as f64) as u64,
+                                max: MAX_EQUATION_DEGREE,
+                            },
+                        ));
+                    }
+                    finite(a.pow(k as u32), span)
+                }
+            }
+        }
+    }
+}
