@@ -1,0 +1,109 @@
+//! [`Ray`]: `R(t) = origin + t·dir` (Stam eq. 2.1).
+
+use glam::DVec3;
+
+use super::gamma;
+
+/// A ray `R(t) = origin + t·dir` (Stam eq. 2.1). `dir` need not be unit length: a
+/// [`Transformed`](crate::surface) surface sees the ray in object space with the same `t`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ray {
+    /// The origin `R_o`.
+    pub origin: DVec3,
+    /// The direction `V`.
+    pub dir: DVec3,
+}
+
+impl Ray {
+    /// The ray from `origin` along `dir`.
+    pub fn new(origin: DVec3, dir: DVec3) -> Self {
+        Ray { origin, dir }
+    }
+
+    /// The point `origin + t·dir`.
+    pub fn at(&self, t: f64) -> DVec3 {
+        self.origin + self.dir * t
+    }
+
+    /// A componentwise bound on the rounding error of [`Ray::at`]:
+    /// `γ(2)·(|origin| + |t·dir|)` (one product and one sum per component).
+    pub fn at_err(&self, t: f64) -> DVec3 {
+        (self.origin.abs() + (self.dir * t).abs()) * gamma(2)
+    }
+}
+
+/// Moves a hit point `p`, known to within the componentwise error box `p_err`, off the surface
+/// with unit normal `n` to the side that `w` points to, so that a ray leaving along `w` starts
+/// on the correct side of the surface (pbrt-v4 `OffsetRayOrigin`).
+///
+/// # Accuracy
+/// The offset along `n` is `|n|·p_err`, the largest extent of the error box along the normal,
+/// so the returned origin lies outside the box of possible true hit points, on `w`'s side of
+/// the tangent plane. It does not guard against a surface that curves back within that
+/// distance; the error boxes are a few ulps, far below any curvature radius the scenes use.
+pub fn offset_ray_origin(p: DVec3, p_err: DVec3, n: DVec3, w: DVec3) -> DVec3 {
+    let d = n.abs().dot(p_err);
+    let mut offset = n * d;
+    if w.dot(n) < 0.0 {
+        offset = -offset;
+    }
+    let po = p + offset;
+    // Round away from p so the rounding of the addition cannot undo the offset.
+    DVec3::new(
+        next_away(po.x, offset.x),
+        next_away(po.y, offset.y),
+        next_away(po.z, offset.z),
+    )
+}
+
+/// The next float after `x` in the direction of `towards_sign` (unchanged for zero).
+fn next_away(x: f64, towards_sign: f64) -> f64 {
+    if towards_sign > 0.0 {
+        next_up(x)
+    } else if towards_sign < 0.0 {
+        -next_up(-x)
+    } else {
+        x
+    }
+}
+
+/// The smallest float greater than `x` (finite `x`).
+fn next_up(x: f64) -> f64 {
+    if x.is_nan() || x == f64::INFINITY {
+        return x;
+    }
+    if x == 0.0 {
+        return f64::from_bits(1);
+    }
+    let bits = x.to_bits();
+    if x > 0.0 {
+        f64::from_bits(bits + 1)
+    } else {
+        f64::from_bits(bits - 1)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn offset_moves_to_the_side_of_w() {
+        let p = DVec3::new(1.0, 2.0, 3.0);
+        let err = DVec3::splat(1e-9);
+        let n = DVec3::Z;
+        let up = offset_ray_origin(p, err, n, DVec3::new(0.3, 0.0, 1.0));
+        let down = offset_ray_origin(p, err, n, DVec3::new(0.3, 0.0, -1.0));
+        assert!(
+            up.z > p.z + 1e-9 * 0.999,
+            "moved above by at least the error: {}",
+            up.z - p.z
+        );
+        assert!(down.z < p.z - 1e-9 * 0.999, "moved below: {}", p.z - down.z);
+        assert_eq!(up.x, p.x, "no motion along a zero offset component");
+        assert!(
+            next_up(1.0) > 1.0 && next_up(-1.0) > -1.0,
+            "next_up increases"
+        );
+    }
+}

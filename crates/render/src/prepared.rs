@@ -1,0 +1,125 @@
+//! [`PreparedScene`]: the scene turned into traceable primitives (surfaces built, transforms
+//! composed, polynomials precomputed) — what the integrator reads.
+
+use crate::geometry::{Bounds3, Transform};
+use crate::scene::{
+    BoundingVolume, Light, Material, Scene, SceneInvalid, ShapeKind, Texture, World,
+};
+use crate::surface::{
+    AaBox, Algebraic, Implicit, Plane, Polygon, Sphere, Superquadric, Surface, Torus, Transformed,
+};
+
+/// A surface with its material: Surface + Material = Object (STYLE.md §6).
+#[derive(Debug)]
+pub struct Primitive {
+    /// The geometry, in world space.
+    pub surface: Box<dyn Surface>,
+    /// How it is lit.
+    pub material: Material,
+}
+
+/// Everything the integrator needs, built once per render.
+#[derive(Debug)]
+pub struct PreparedScene {
+    /// The objects.
+    pub primitives: Vec<Primitive>,
+    /// The lights.
+    pub lights: Vec<Light>,
+    /// World settings.
+    pub world: World,
+    /// Textures referenced by materials.
+    pub textures: Vec<Texture>,
+}
+
+impl PreparedScene {
+    /// Validates `scene` and builds its surfaces.
+    pub fn new(scene: &Scene) -> Result<Self, SceneInvalid> {
+        scene.validate()?;
+        let mut primitives = Vec::with_capacity(scene.objects.len());
+        for (index, object) in scene.objects.iter().enumerate() {
+            let bad = |key, reason| SceneInvalid::Object {
+                index,
+                error: crate::scene::InvalidModel::new(key, reason),
+            };
+            let world_from_object = Transform::from_object(&object.transform)
+                .ok_or_else(|| bad("Transform", "is singular"))?;
+            let user_bounds = match object.bounding {
+                BoundingVolume::None => None,
+                BoundingVolume::Box { min, max } => Some(Bounds3::new(min, max)),
+            };
+            let surface = build_surface(&object.shape, user_bounds, &world_from_object)
+                .ok_or_else(|| bad("Type", "has degenerate geometry"))?;
+            primitives.push(Primitive {
+                surface,
+                material: object.material.clone(),
+            });
+        }
+        Ok(PreparedScene {
+            primitives,
+            lights: scene.lights.clone(),
+            world: scene.world.clone(),
+            textures: scene.textures.clone(),
+        })
+    }
+}
+
+/// Places `s` with `m`, skipping the wrapper for the identity.
+fn place<S: Surface + 'static>(s: S, m: &Transform) -> Box<dyn Surface> {
+    if m.is_identity() {
+        Box::new(s)
+    } else {
+        Box::new(Transformed::new(s, *m))
+    }
+}
+
+/// Builds the world-space surface of one shape. `user_bounds` is in the shape's coordinates;
+/// shapes placed by an internal frame (torus, superquadric) get it through the same frame.
+fn build_surface(
+    shape: &ShapeKind,
+    user_bounds: Option<Bounds3>,
+    world_from_object: &Transform,
+) -> Option<Box<dyn Surface>> {
+    Some(match shape {
+        ShapeKind::Sphere { center, radius } => place(
+            Implicit::new(Sphere::new(*center, *radius), user_bounds),
+            world_from_object,
+        ),
+        ShapeKind::Plane { origin, normal } => place(
+            Implicit::new(Plane::new(*origin, *normal), user_bounds),
+            world_from_object,
+        ),
+        ShapeKind::Polygon { vertices } => place(Polygon::new(vertices)?, world_from_object),
+        ShapeKind::Triangle { vertices } => place(Polygon::new(vertices)?, world_from_object),
+        ShapeKind::Box { min, max } => place(AaBox::new(*min, *max), world_from_object),
+        ShapeKind::Superquadric {
+            center,
+            size,
+            power,
+        } => {
+            let frame = Transform::new(glam::DAffine3::from_translation(*center))?;
+            let m = world_from_object.compose(&frame)?;
+            place(Superquadric::new(*size, *power), &m)
+        }
+        ShapeKind::Torus {
+            center,
+            axis,
+            major,
+            minor,
+        } => {
+            // Canonical torus about z, placed by a rigid frame; the user box is expressed in
+            // the object's coordinates, so map it into the frame's.
+            let frame = if axis.x == 0.0 && axis.y == 0.0 && axis.z > 0.0 {
+                Transform::new(glam::DAffine3::from_translation(*center))?
+            } else {
+                Transform::frame(*center, *axis)?
+            };
+            let local_user = user_bounds.map(|b| frame.inverse().apply_bounds(&b));
+            let m = world_from_object.compose(&frame)?;
+            place(Implicit::new(Torus::new(*major, *minor), local_user), &m)
+        }
+        ShapeKind::Algebraic { poly } => place(
+            Implicit::new(Algebraic::new(poly.clone()), user_bounds),
+            world_from_object,
+        ),
+    })
+}

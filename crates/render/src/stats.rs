@@ -1,0 +1,254 @@
+//! [`TraceStats`]: what the tracer did, counted per thread and merged at the end.
+
+use std::fmt;
+use std::ops::AddAssign;
+use std::time::Duration;
+
+use poly::{RootStats, STATS_DEGREES};
+
+use crate::surface::SurfaceKind;
+
+/// Counters filled in while tracing. Each worker thread owns one (inside its
+/// [`Workspace`](crate::Workspace)); the totals are summed with [`TraceStats::merge`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TraceStats {
+    /// Camera rays.
+    pub primary_rays: u64,
+    /// Shadow rays traced (one per light per shaded hit, when shadows are on and the light is
+    /// above the surface).
+    pub shadow_rays: u64,
+    /// Reflected rays (eq. 2.11–2.13).
+    pub reflected_rays: u64,
+    /// Refracted rays (eq. 2.14–2.16), including those redirected by total internal reflection.
+    pub refracted_rays: u64,
+    /// Per surface kind (indexed by [`SurfaceKind::index`]): nearest-hit tests, hits, shadow
+    /// (occlusion) tests, occlusions, and bounding-box rejections (before any polynomial).
+    pub per_kind: [KindStats; SurfaceKind::COUNT],
+    /// Skipped shadow rays: `Shadows = OFF`.
+    pub shadow_skipped_off: u64,
+    /// Skipped light contributions: the light is below the surface (`N·L ≤ 0`), no shadow ray.
+    pub light_below_surface: u64,
+    /// Shadow rays stopped at the first blocker (counted in `per_kind[..].occlusions` too).
+    pub shadow_blocked: u64,
+    /// Secondary rays not traced because the material has no reflection or transmission
+    /// (illumination below `MIRROR`, or `k_s = 0` / `k_t = 0`).
+    pub secondary_skipped_material: u64,
+    /// Secondary rays not traced because `MaxDepth` was reached.
+    pub secondary_skipped_depth: u64,
+    /// Transmissions turned into reflections by total internal reflection.
+    pub total_internal_reflections: u64,
+    /// Hits at a singular point (`∇F = 0`) shaded with the fallback normal.
+    pub singular_normals: u64,
+    /// Root queries of the polynomial solver (by degree, exact fallbacks…).
+    pub roots: RootStats,
+}
+
+/// Counters for one kind of surface.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct KindStats {
+    /// Nearest-hit queries.
+    pub tests: u64,
+    /// Nearest-hit queries that returned a hit closer than the current nearest.
+    pub hits: u64,
+    /// Occlusion (shadow) queries.
+    pub shadow_tests: u64,
+    /// Occlusion queries that found a blocker.
+    pub occlusions: u64,
+    /// Queries rejected by the bounding box before any polynomial was built.
+    pub bbox_rejects: u64,
+}
+
+impl KindStats {
+    fn merge(&mut self, o: &KindStats) {
+        self.tests += o.tests;
+        self.hits += o.hits;
+        self.shadow_tests += o.shadow_tests;
+        self.occlusions += o.occlusions;
+        self.bbox_rejects += o.bbox_rejects;
+    }
+}
+
+impl TraceStats {
+    /// Adds every counter of `o`.
+    pub fn merge(&mut self, o: &TraceStats) {
+        self.primary_rays += o.primary_rays;
+        self.shadow_rays += o.shadow_rays;
+        self.reflected_rays += o.reflected_rays;
+        self.refracted_rays += o.refracted_rays;
+        for (a, b) in self.per_kind.iter_mut().zip(&o.per_kind) {
+            a.merge(b);
+        }
+        self.shadow_skipped_off += o.shadow_skipped_off;
+        self.light_below_surface += o.light_below_surface;
+        self.shadow_blocked += o.shadow_blocked;
+        self.secondary_skipped_material += o.secondary_skipped_material;
+        self.secondary_skipped_depth += o.secondary_skipped_depth;
+        self.total_internal_reflections += o.total_internal_reflections;
+        self.singular_normals += o.singular_normals;
+        self.roots.merge(&o.roots);
+    }
+
+    /// All rays traced.
+    pub fn total_rays(&self) -> u64 {
+        self.primary_rays + self.shadow_rays + self.reflected_rays + self.refracted_rays
+    }
+
+    /// Root queries that ended without a certified answer. `poly` reports none today: every
+    /// query it cannot settle in `f64` is redone exactly (`roots.exact_fallbacks`).
+    pub fn unresolved_roots(&self) -> u64 {
+        0
+    }
+}
+
+impl AddAssign<&TraceStats> for TraceStats {
+    fn add_assign(&mut self, rhs: &TraceStats) {
+        self.merge(rhs);
+    }
+}
+
+/// Wall time of each phase of a render.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PhaseTimes {
+    /// Reading and building the scene.
+    pub parse: Duration,
+    /// Preparing surfaces (bounds, transforms, polynomials).
+    pub setup: Duration,
+    /// Tracing all rays.
+    pub trace: Duration,
+    /// Encoding and writing the image files.
+    pub write: Duration,
+}
+
+/// The statistics report printed by `render --stats`.
+#[derive(Clone, Debug)]
+pub struct StatsReport<'a> {
+    /// The counters.
+    pub stats: &'a TraceStats,
+    /// The phase times.
+    pub times: PhaseTimes,
+    /// Image size.
+    pub size: [u32; 2],
+    /// Samples per pixel.
+    pub samples_per_pixel: u32,
+    /// Worker threads.
+    pub threads: usize,
+}
+
+impl fmt::Display for StatsReport<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let s = self.stats;
+        writeln!(
+            f,
+            "Render statistics: {}x{} pixels, {} samples/pixel, {} threads",
+            self.size[0], self.size[1], self.samples_per_pixel, self.threads
+        )?;
+        writeln!(f, "Rays")?;
+        writeln!(f, "  primary              {:>12}", s.primary_rays)?;
+        writeln!(f, "  shadow               {:>12}", s.shadow_rays)?;
+        writeln!(f, "  reflected            {:>12}", s.reflected_rays)?;
+        writeln!(f, "  refracted            {:>12}", s.refracted_rays)?;
+        writeln!(f, "  total                {:>12}", s.total_rays())?;
+        writeln!(
+            f,
+            "Intersections        tests         hits  shadow tests   occlusions  bbox rejects"
+        )?;
+        for kind in SurfaceKind::ALL {
+            let k = &s.per_kind[kind.index()];
+            if k.tests + k.shadow_tests == 0 {
+                continue;
+            }
+            writeln!(
+                f,
+                "  {:<17} {:>10} {:>12} {:>13} {:>12} {:>13}",
+                kind.name(),
+                k.tests,
+                k.hits,
+                k.shadow_tests,
+                k.occlusions,
+                k.bbox_rejects
+            )?;
+        }
+        writeln!(f, "Work skipped")?;
+        writeln!(
+            f,
+            "  shadow rays, Shadows = OFF        {:>12}",
+            s.shadow_skipped_off
+        )?;
+        writeln!(
+            f,
+            "  lights below the surface (N.L<=0) {:>12}",
+            s.light_below_surface
+        )?;
+        writeln!(
+            f,
+            "  shadow rays stopped at a blocker  {:>12}",
+            s.shadow_blocked
+        )?;
+        writeln!(
+            f,
+            "  secondary rays, material ks=kt=0  {:>12}",
+            s.secondary_skipped_material
+        )?;
+        writeln!(
+            f,
+            "  secondary rays, MaxDepth reached  {:>12}",
+            s.secondary_skipped_depth
+        )?;
+        writeln!(
+            f,
+            "  total internal reflections        {:>12}",
+            s.total_internal_reflections
+        )?;
+        writeln!(
+            f,
+            "  singular points (fallback normal) {:>12}",
+            s.singular_normals
+        )?;
+        let r = &s.roots;
+        writeln!(f, "Polynomial root queries              {:>12}", r.queries)?;
+        for (deg, n) in r.by_degree.iter().enumerate() {
+            if *n > 0 {
+                let plus = if deg == STATS_DEGREES - 1 { "+" } else { " " };
+                writeln!(f, "  degree {deg:>2}{plus}                         {n:>12}")?;
+            }
+        }
+        writeln!(
+            f,
+            "  with a root in range               {:>12}",
+            r.with_root
+        )?;
+        writeln!(
+            f,
+            "  closed form (degree 1-2)           {:>12}",
+            r.closed_form
+        )?;
+        writeln!(
+            f,
+            "  exact-rational fallbacks           {:>12}",
+            r.exact_fallbacks
+        )?;
+        writeln!(
+            f,
+            "  refinement fallbacks               {:>12}",
+            r.refine_fallbacks
+        )?;
+        writeln!(f, "  rejected (non-finite input)        {:>12}", r.rejected)?;
+        writeln!(
+            f,
+            "  unresolved roots                   {:>12}",
+            s.unresolved_roots()
+        )?;
+        let ms = |d: Duration| d.as_secs_f64() * 1e3;
+        let t = &self.times;
+        writeln!(f, "Time (ms)")?;
+        writeln!(
+            f,
+            "  parse {:>9.1}   setup {:>9.1}   trace {:>9.1}   write {:>9.1}",
+            ms(t.parse),
+            ms(t.setup),
+            ms(t.trace),
+            ms(t.write)
+        )?;
+        Ok(())
+    }
+}

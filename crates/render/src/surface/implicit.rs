@@ -1,0 +1,226 @@
+//! The one intersection path of every implicit surface (Stam §3.2.1, eq. 3.7–3.8):
+//! clip the ray to the bounding box, move its origin to the box entry, restrict `F` to the
+//! ray, and ask `poly` for the smallest root in range. Normals are `∇F` (Stam eq. 3.24).
+//! See `paper-notes/implicit-surfaces.md`.
+
+use std::ops::Range;
+
+use glam::{DVec2, DVec3};
+use poly::{Poly, RootOptions};
+
+use super::{Hit, Surface, SurfaceGeometry, SurfaceKind};
+use crate::geometry::{Bounds3, Ray, gamma};
+use crate::poly3::{Poly3, RestrictScratch};
+use crate::workspace::Workspace;
+
+/// Root tolerance relative to the extent of the search: a nearest-hit query asks `poly` for
+/// the root to within `ROOT_X_TOL_REL × (bounding-box diagonal / |d|)` in `t`, i.e. about
+/// 2⁻³³ ≈ 1.2·10⁻¹⁰ of the object's size along the ray. That is far below a pixel at any
+/// distance, and cheap: refinement converges superlinearly, so halving it costs a fraction of
+/// one evaluation. (Absolute in `t`; the bound `poly` guarantees for an isolated simple root.)
+pub const ROOT_X_TOL_REL: f64 = 1.0 / (1u64 << 33) as f64;
+
+/// Relative error assumed for a hit at a singular point (`∇F` indistinguishable from zero),
+/// where the residual bound `|F|/|∇F|` is meaningless: the spawned ray is offset by this
+/// fraction of the object's size. A heuristic, used only at singular points (counted in the
+/// statistics as `singular_normals`).
+pub const SINGULAR_P_ERR_REL: f64 = 1e-9;
+
+/// An implicit surface `F(x, y, z) = 0` as the shared path needs it.
+pub trait ImplicitFn: Send + Sync + std::fmt::Debug {
+    /// The kind, for statistics.
+    fn kind(&self) -> SurfaceKind;
+
+    /// `F` as a trivariate polynomial (evaluated only at accepted hits, for the normal and the
+    /// residual error bound).
+    fn poly(&self) -> &Poly3;
+
+    /// Writes the coefficients of `t ↦ F(o + t·d)`, low → high, into `out` (cleared first).
+    /// Shapes with a closed-form restriction (sphere eq. 2.4, plane, torus) write it directly;
+    /// the general case is [`Poly3::restrict_into`].
+    fn restrict(&self, o: DVec3, d: DVec3, scratch: &mut RestrictScratch, out: &mut Vec<f64>);
+
+    /// A box holding the surface, `None` if unbounded.
+    fn bounds(&self) -> Option<Bounds3>;
+
+    /// Surface parameters at `p`, where the shape defines them.
+    fn uv(&self, _p: DVec3) -> Option<DVec2> {
+        None
+    }
+}
+
+/// An implicit surface ready for tracing: `F`, its gradient polynomials, and its bounds.
+#[derive(Debug)]
+pub struct Implicit<F> {
+    f: F,
+    grad: [Poly3; 3],
+    degree: u32,
+    bounds: Option<Bounds3>,
+}
+
+impl<F: ImplicitFn> Implicit<F> {
+    /// Wraps `f`, precomputing `∇F`; `user_bounds` (a scene `Bounding volume`) tightens the
+    /// shape's own bounds, or is the only bound of an unbounded shape.
+    pub fn new(f: F, user_bounds: Option<Bounds3>) -> Self {
+        let grad = f.poly().gradient_polys();
+        let degree = f.poly().degree();
+        let bounds = match (f.bounds(), user_bounds) {
+            (Some(a), Some(b)) => Some(a.intersection(&b)),
+            (a, b) => a.or(b),
+        };
+        Implicit {
+            f,
+            grad,
+            degree,
+            bounds,
+        }
+    }
+
+    /// The wrapped function.
+    pub fn function(&self) -> &F {
+        &self.f
+    }
+
+    /// The root tolerance in `t` for a ray with direction `d` (see [`ROOT_X_TOL_REL`]).
+    fn x_tol(&self, d: DVec3, o: DVec3, range_len: f64) -> f64 {
+        let size = match &self.bounds {
+            Some(b) => b.diagonal() / d.length(),
+            None => range_len + o.abs().max_element() / d.length(),
+        };
+        ROOT_X_TOL_REL * size
+    }
+}
+
+/// The smallest root of the polynomial held in `ws.coeffs` in `(lo, hi]` (`hi` may be
+/// infinite), found by `poly`'s certified query; `None` also for a polynomial that vanishes
+/// identically along the ray (the ray lies in the surface).
+pub(crate) fn smallest_root_in(ws: &mut Workspace, lo: f64, hi: f64, x_tol: f64) -> Option<f64> {
+    let p = Poly::new(std::mem::take(&mut ws.coeffs));
+    let root = p.smallest_root_with(lo, hi, &RootOptions::new(x_tol), &mut ws.stats.roots);
+    ws.coeffs = p.into_coeffs();
+    root
+}
+
+/// Clips `t_range` to `bounds` (counting a rejection for `kind`), or passes it through for an
+/// unbounded surface.
+pub(crate) fn clip(
+    bounds: Option<&Bounds3>,
+    ray: &Ray,
+    t_range: Range<f64>,
+    ws: &mut Workspace,
+    kind: SurfaceKind,
+) -> Option<Range<f64>> {
+    match bounds {
+        None => Some(t_range),
+        Some(b) => {
+            let r = b.intersect_ray(ray, t_range);
+            if r.is_none() {
+                ws.stats.per_kind[kind.index()].bbox_rejects += 1;
+            }
+            r
+        }
+    }
+}
+
+impl<F: ImplicitFn> Implicit<F> {
+    /// The shared query: restrict at the (moved) origin and solve. Returns `(t, point)`.
+    pub(crate) fn nearest(
+        &self,
+        ray: &Ray,
+        t_range: Range<f64>,
+        ws: &mut Workspace,
+        any_root: bool,
+    ) -> Option<(f64, DVec3)> {
+        let seg = clip(self.bounds.as_ref(), ray, t_range, ws, self.f.kind())?;
+        // Move the origin to where the ray enters the box (or to the range start): the
+        // restricted polynomial is then built from small numbers near the surface, which is
+        // what keeps hits exact far from the camera (paper-notes/implicit-surfaces.md §2).
+        let t0 = seg.start;
+        let o = ray.at(t0);
+        self.f
+            .restrict(o, ray.dir, &mut ws.restrict, &mut ws.coeffs);
+        let hi = seg.end - t0;
+        let x_tol = if any_root && hi.is_finite() {
+            // Any root proves occlusion: refinement can stop as soon as one is isolated.
+            hi
+        } else {
+            self.x_tol(ray.dir, o, hi)
+        };
+        let s = smallest_root_in(ws, 0.0, hi, x_tol)?;
+        Some((t0 + s, o + ray.dir * s))
+    }
+}
+
+impl<F: ImplicitFn> Surface for Implicit<F> {
+    fn kind(&self) -> SurfaceKind {
+        self.f.kind()
+    }
+
+    fn bounds(&self) -> Option<Bounds3> {
+        self.bounds
+    }
+
+    fn intersect(&self, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> Option<Hit> {
+        let (t, p) = self.nearest(ray, t_range, ws, false)?;
+        Some(Hit {
+            t,
+            p,
+            local: p,
+            tag: 0,
+        })
+    }
+
+    fn occluded(&self, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> bool {
+        self.nearest(ray, t_range, ws, true).is_some()
+    }
+
+    fn shading(&self, hit: &Hit) -> SurfaceGeometry {
+        let p = hit.local;
+        let (normal, p_err) = gradient_normal(self.f.poly(), &self.grad, self.degree, p)
+            .unwrap_or_else(|| {
+                let size = self
+                    .bounds
+                    .map_or(0.0, |b| b.diagonal())
+                    .max(p.abs().max_element());
+                (None, DVec3::splat(SINGULAR_P_ERR_REL * size))
+            });
+        SurfaceGeometry {
+            p,
+            p_err,
+            normal,
+            uv: self.f.uv(p),
+        }
+    }
+}
+
+/// The unit normal `∇F/|∇F|` at `p` and an error box for `p`, or `None` at a singular point
+/// (`∇F` not distinguishable from zero).
+///
+/// # Accuracy
+/// The error box is the first-order distance from `p` to the surface,
+/// `(|F(p)| + e_F) / |∇F(p)|` with `e_F = γ(d + 3)·Σ|a_ijk||x|^i|y|^j|z|^k` bounding the
+/// evaluation error of `F` of total degree `d`. It measures the residual actually left at the
+/// stored point, so it covers the root tolerance, the rounding of the restricted coefficients
+/// and of `p = o + s·d` together. It is a first-order bound: valid where `F` is close to
+/// linear over that distance, which holds away from singular points.
+pub(crate) fn gradient_normal(
+    f: &Poly3,
+    grad: &[Poly3; 3],
+    degree: u32,
+    p: DVec3,
+) -> Option<(Option<DVec3>, DVec3)> {
+    let g = DVec3::new(grad[0].eval(p), grad[1].eval(p), grad[2].eval(p));
+    let g_err = DVec3::new(
+        grad[0].eval_abs(p),
+        grad[1].eval_abs(p),
+        grad[2].eval_abs(p),
+    ) * gamma(degree as usize + 2);
+    let glen = g.length();
+    // `glen <= g_err` also refuses NaN through `!is_finite`.
+    if glen <= g_err.length() || !glen.is_finite() {
+        return None;
+    }
+    let f_err = gamma(degree as usize + 3) * f.eval_abs(p);
+    let dist = (f.eval(p).abs() + f_err) / glen;
+    Some((Some(g / glen), DVec3::splat(dist)))
+}

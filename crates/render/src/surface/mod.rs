@@ -1,0 +1,169 @@
+//! Surfaces: the [`Surface`] trait and every shape the tracer knows.
+//!
+//! The object-space contract (STYLE.md §6, after pbrt-v4 `BasicIntersect` /
+//! `InteractionFromIntersection`): [`Surface::intersect`] is cheap and returns only `t` and the
+//! local point; [`Surface::shading`] runs once, for the accepted hit, and computes the normal,
+//! surface parameters and the error bound of the hit point. [`Surface::occluded`] answers
+//! shadow queries and may stop early.
+//!
+//! Every implicit surface (sphere, plane, torus, algebraic surface, and the superquadric's
+//! octant pieces) goes through the same path in [`implicit`]: restrict `F` to the ray, then ask
+//! `poly` for the smallest root in range (`paper-notes/implicit-surfaces.md`). No shape owns a
+//! solver.
+
+use std::ops::Range;
+
+use glam::{DVec2, DVec3};
+
+use crate::geometry::{Bounds3, Ray};
+use crate::workspace::Workspace;
+
+mod aabox;
+mod algebraic;
+mod implicit;
+mod plane;
+mod polygon;
+mod sphere;
+mod superquadric;
+mod torus;
+mod transformed;
+
+pub use aabox::AaBox;
+pub use algebraic::Algebraic;
+pub use implicit::{Implicit, ImplicitFn, ROOT_X_TOL_REL, SINGULAR_P_ERR_REL};
+pub use plane::Plane;
+pub use polygon::Polygon;
+pub use sphere::Sphere;
+pub use superquadric::Superquadric;
+pub use torus::Torus;
+pub use transformed::Transformed;
+
+/// The result of a nearest-hit query: cheap, no normal yet.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Ray parameter of the hit.
+    pub t: f64,
+    /// The hit point in the coordinates of the ray passed to [`Surface::intersect`].
+    pub p: DVec3,
+    /// The hit point in the innermost surface's own coordinates (equal to `p` for a surface
+    /// that is not [`Transformed`]).
+    pub local: DVec3,
+    /// Shape-specific data for [`Surface::shading`] (box face, superquadric octant…).
+    pub tag: u32,
+}
+
+/// Geometry at an accepted hit, computed by [`Surface::shading`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceGeometry {
+    /// The hit point (in the coordinates of the query ray).
+    pub p: DVec3,
+    /// A componentwise bound on `|p − true hit point|`: spawned rays are offset by it
+    /// ([`offset_ray_origin`](crate::geometry::offset_ray_origin)).
+    pub p_err: DVec3,
+    /// The unit geometric normal (not flipped towards the viewer); `None` at a singular point
+    /// where `∇F = 0` (Stam §3.6.1), where the integrator falls back to facing the ray.
+    pub normal: Option<DVec3>,
+    /// Surface parameters where the shape defines them (plane, polygon, triangle and box
+    /// faces: coordinates in the face's own basis), used by textures.
+    pub uv: Option<DVec2>,
+}
+
+/// The kinds of surface, for statistics.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SurfaceKind {
+    /// [`Sphere`].
+    Sphere,
+    /// [`Plane`].
+    Plane,
+    /// [`Polygon`] with more than three vertices.
+    Polygon,
+    /// [`Polygon`] with three vertices.
+    Triangle,
+    /// [`AaBox`].
+    Box,
+    /// [`Superquadric`].
+    Superquadric,
+    /// [`Torus`].
+    Torus,
+    /// [`Algebraic`].
+    Algebraic,
+}
+
+impl SurfaceKind {
+    /// Number of kinds.
+    pub const COUNT: usize = 8;
+    /// Every kind, in [`SurfaceKind::index`] order.
+    pub const ALL: [SurfaceKind; SurfaceKind::COUNT] = [
+        SurfaceKind::Sphere,
+        SurfaceKind::Plane,
+        SurfaceKind::Polygon,
+        SurfaceKind::Triangle,
+        SurfaceKind::Box,
+        SurfaceKind::Superquadric,
+        SurfaceKind::Torus,
+        SurfaceKind::Algebraic,
+    ];
+
+    /// Position in [`SurfaceKind::ALL`] and in per-kind statistics arrays.
+    pub fn index(self) -> usize {
+        self as usize
+    }
+
+    /// The scene-file type name.
+    pub fn name(self) -> &'static str {
+        match self {
+            SurfaceKind::Sphere => "SPHERE",
+            SurfaceKind::Plane => "PLANE",
+            SurfaceKind::Polygon => "POLYGON",
+            SurfaceKind::Triangle => "TRIANGLE",
+            SurfaceKind::Box => "BOX",
+            SurfaceKind::Superquadric => "SUPERQUADRIC",
+            SurfaceKind::Torus => "TORUS",
+            SurfaceKind::Algebraic => "ALGEBRAIC",
+        }
+    }
+}
+
+/// A shape in its own coordinates.
+///
+/// The queries take the thread's [`Workspace`] (scratch buffers and counters) in addition to
+/// STYLE.md's `intersect(&Ray, Range<f64>)`, so that the hot loop allocates nothing and counts
+/// without sharing.
+pub trait Surface: Send + Sync + std::fmt::Debug {
+    /// Which kind of surface this is (statistics).
+    fn kind(&self) -> SurfaceKind;
+
+    /// A box holding the surface, `None` for unbounded surfaces (planes, unbounded algebraic
+    /// surfaces).
+    fn bounds(&self) -> Option<Bounds3>;
+
+    /// The nearest hit with `t` in `t_range` (open at both ends), if any.
+    fn intersect(&self, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> Option<Hit>;
+
+    /// Whether anything blocks the ray within `t_range`; may stop at the first blocker.
+    fn occluded(&self, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> bool {
+        self.intersect(ray, t_range, ws).is_some()
+    }
+
+    /// Normal, surface parameters and error bound at a hit returned by
+    /// [`Surface::intersect`] on this surface.
+    fn shading(&self, hit: &Hit) -> SurfaceGeometry;
+}
+
+impl<S: Surface + ?Sized> Surface for Box<S> {
+    fn kind(&self) -> SurfaceKind {
+        (**self).kind()
+    }
+    fn bounds(&self) -> Option<Bounds3> {
+        (**self).bounds()
+    }
+    fn intersect(&self, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> Option<Hit> {
+        (**self).intersect(ray, t_range, ws)
+    }
+    fn occluded(&self, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> bool {
+        (**self).occluded(ray, t_range, ws)
+    }
+    fn shading(&self, hit: &Hit) -> SurfaceGeometry {
+        (**self).shading(hit)
+    }
+}

@@ -1,0 +1,219 @@
+//! The Whitted integrator with Stam's illumination model (thesis §2.3, eq. 2.6–2.16;
+//! Annexe B `Intensity`, `IllumModel`, `TraceRay`). See `paper-notes/illumination.md`.
+//!
+//! `I = I_a + I_d + I_s + I_r + I_t` (2.6) with
+//! - `I_a = k_a C_s` (2.7),
+//! - `I_d = k_d C_s Σ_j I_j (N·L_j)` (2.8), lights hidden by a shadow ray skipped,
+//! - `I_s = k_s C_r Σ_j I_j (N·H_j)^n`, `H_j = (L_j − V)/|L_j − V|` (2.9–2.10),
+//! - `I_r = k_s M`, `M` traced along `R = W + 2N`, `W = V/|V·N|` (2.11–2.13),
+//! - `I_t = k_t T`, `T` traced along `P` of eq. 2.15 with `k_n = n₂/n₁` (2.14–2.16).
+//!
+//! Each object's [`Illumination`] level selects the terms, as Stam's `IllumId` does.
+
+use std::ops::Range;
+
+use glam::DVec3;
+
+use crate::geometry::{Ray, offset_ray_origin};
+use crate::material::surface_color;
+use crate::prepared::PreparedScene;
+use crate::scene::{Illumination, Rgb};
+use crate::surface::Hit;
+use crate::workspace::Workspace;
+
+/// Distance scale of Stam's attenuation (§2.3.6; `ray0.c` `IllumModel`:
+/// `less = 5/(5 + distL)`), in scene units. Applied to the diffuse and specular terms when
+/// `Attenuation = ON`.
+pub const ATTENUATION_DISTANCE: f64 = 5.0;
+
+/// The ray parameter range of a new ray: open at 0. Self-intersection is prevented by moving
+/// the origin off the surface by the hit point's error bound
+/// ([`offset_ray_origin`]), not by a fixed epsilon.
+const SPAWN_RANGE: Range<f64> = 0.0..f64::INFINITY;
+
+/// What a primary ray returns.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrimarySample {
+    /// The colour (linear, each channel clamped to `[0, 1]` as in Stam's `Intensity`).
+    pub color: Rgb,
+    /// Distance to the first hit (`+∞` for a miss).
+    pub depth: f64,
+}
+
+/// The nearest hit along `ray` among all primitives: its index and the hit.
+pub fn nearest_hit(
+    scene: &PreparedScene,
+    ray: &Ray,
+    t_range: Range<f64>,
+    ws: &mut Workspace,
+) -> Option<(usize, Hit)> {
+    let mut best: Option<(usize, Hit)> = None;
+    let mut t_max = t_range.end;
+    for (i, prim) in scene.primitives.iter().enumerate() {
+        let kind = prim.surface.kind().index();
+        ws.stats.per_kind[kind].tests += 1;
+        if let Some(h) = prim.surface.intersect(ray, t_range.start..t_max, ws) {
+            ws.stats.per_kind[kind].hits += 1;
+            t_max = h.t;
+            best = Some((i, h));
+        }
+    }
+    best
+}
+
+/// Whether any primitive blocks `ray` within `t_range`; stops at the first blocker.
+pub fn occluded(scene: &PreparedScene, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> bool {
+    for prim in &scene.primitives {
+        let kind = prim.surface.kind().index();
+        ws.stats.per_kind[kind].shadow_tests += 1;
+        if prim.surface.occluded(ray, t_range.clone(), ws) {
+            ws.stats.per_kind[kind].occlusions += 1;
+            return true;
+        }
+    }
+    false
+}
+
+/// Traces a camera ray (depth 1).
+pub fn trace_primary(scene: &PreparedScene, ray: &Ray, ws: &mut Workspace) -> PrimarySample {
+    ws.stats.primary_rays += 1;
+    match nearest_hit(scene, ray, SPAWN_RANGE, ws) {
+        Some((i, hit)) => {
+            let depth = hit.t * ray.dir.length();
+            PrimarySample {
+                color: shade(scene, ray, i, &hit, 1, ws),
+                depth,
+            }
+        }
+        None => PrimarySample {
+            color: scene.world.background,
+            depth: f64::INFINITY,
+        },
+    }
+}
+
+/// Stam's `TraceRay` for a secondary ray at recursion depth `depth` (≥ 2).
+fn trace(scene: &PreparedScene, ray: &Ray, depth: u32, ws: &mut Workspace) -> Rgb {
+    match nearest_hit(scene, ray, SPAWN_RANGE, ws) {
+        Some((i, hit)) => shade(scene, ray, i, &hit, depth, ws),
+        None => scene.world.background,
+    }
+}
+
+/// Stam's `Intensity`: eq. 2.6 at an accepted hit.
+fn shade(
+    scene: &PreparedScene,
+    ray: &Ray,
+    index: usize,
+    hit: &Hit,
+    depth: u32,
+    ws: &mut Workspace,
+) -> Rgb {
+    let prim = &scene.primitives[index];
+    let m = &prim.material;
+    if m.illumination == Illumination::Blackbody {
+        return Rgb::ZERO;
+    }
+    let g = prim.surface.shading(hit);
+    let v = ray.dir.normalize(); // V: from the eye towards the surface
+    let mut n = match g.normal {
+        Some(n) => n,
+        None => {
+            // Singular point (∇F = 0, Stam §3.6.1): shade as if the surface faced the ray.
+            ws.stats.singular_normals += 1;
+            -v
+        }
+    };
+    // Make N face the incoming ray; remember whether we are leaving the object.
+    let cos_alpha = n.dot(v);
+    let inside = cos_alpha > 0.0;
+    if inside {
+        n = -n;
+    }
+    let p = g.p;
+    let cs = surface_color(m, &scene.textures, g.uv);
+
+    // (2.7) ambient.
+    let mut color = cs * m.ka;
+
+    // (2.8)–(2.10) diffuse and specular, per light.
+    if m.illumination >= Illumination::Diffuse {
+        for light in &scene.lights {
+            let to_light = light.source - p;
+            let dist = to_light.length();
+            let l = to_light / dist;
+            let cos_theta = n.dot(l);
+            if cos_theta <= 0.0 || cos_theta.is_nan() {
+                ws.stats.light_below_surface += 1;
+                continue;
+            }
+            if scene.world.shadows {
+                let origin = offset_ray_origin(p, g.p_err, n, l);
+                let shadow = Ray::new(origin, l);
+                ws.stats.shadow_rays += 1;
+                let reach = (light.source - origin).length();
+                if occluded(scene, &shadow, 0.0..reach, ws) {
+                    ws.stats.shadow_blocked += 1;
+                    continue;
+                }
+            } else {
+                ws.stats.shadow_skipped_off += 1;
+            }
+            let atten = if scene.world.attenuation {
+                ATTENUATION_DISTANCE / (ATTENUATION_DISTANCE + dist)
+            } else {
+                1.0
+            };
+            color += cs * light.color * (m.kd * cos_theta * atten);
+            if m.illumination >= Illumination::Specular {
+                let h = (l - v).normalize();
+                let cos_h = n.dot(h);
+                if cos_h > 0.0 {
+                    color += m.cr * light.color * (m.ks * cos_h.powf(m.n) * atten);
+                }
+            }
+        }
+    }
+
+    // (2.11)–(2.13) reflection: R = V − 2(V·N)N, the normalised W + 2N.
+    let cos_alpha = v.dot(n); // ≤ 0 after the flip
+    let reflect_dir = v - n * (2.0 * cos_alpha);
+    if m.illumination >= Illumination::Mirror {
+        if m.ks == 0.0 {
+            ws.stats.secondary_skipped_material += 1;
+        } else if depth >= scene.world.max_depth {
+            ws.stats.secondary_skipped_depth += 1;
+        } else {
+            ws.stats.reflected_rays += 1;
+            let origin = offset_ray_origin(p, g.p_err, n, reflect_dir);
+            color += trace(scene, &Ray::new(origin, reflect_dir), depth + 1, ws) * m.ks;
+        }
+    }
+
+    // (2.14)–(2.16) transmission. With k_n = n₂/n₁ (inverted when leaving the object), eq.
+    // 2.15 is Snell's law: P = V/k_n + (−cos α/k_n − √(1 − (1 − cos²α)/k_n²))·N, as in
+    // Stam's `Intensity`. When the root is imaginary (total internal reflection) the
+    // transmitted energy follows the reflected direction.
+    if m.illumination >= Illumination::Transparent {
+        if m.kt == 0.0 {
+            ws.stats.secondary_skipped_material += 1;
+        } else if depth >= scene.world.max_depth {
+            ws.stats.secondary_skipped_depth += 1;
+        } else {
+            let kn = if inside { 1.0 / m.kn } else { m.kn };
+            let q = 1.0 - (1.0 - cos_alpha * cos_alpha) / (kn * kn);
+            let dir = if q >= 0.0 {
+                v / kn + n * (-cos_alpha / kn - q.sqrt())
+            } else {
+                ws.stats.total_internal_reflections += 1;
+                reflect_dir
+            };
+            ws.stats.refracted_rays += 1;
+            let origin = offset_ray_origin(p, g.p_err, n, dir);
+            color += trace(scene, &Ray::new(origin, dir), depth + 1, ws) * m.kt;
+        }
+    }
+
+    // Stam clamps each intensity to at most 1 (end of `Intensity`).
+    color.min(DVec3::ONE)
+}

@@ -1,0 +1,24 @@
+//! [`Workspace`]: per-thread scratch buffers and counters for the hot loop.
+
+use crate::poly3::RestrictScratch;
+use crate::stats::TraceStats;
+
+/// Per-thread state of the tracer: the buffer that receives the restricted polynomial
+/// `F(o + t·d)`, scratch for [`Poly3::restrict_into`](crate::Poly3::restrict_into), and the
+/// statistics. One per worker, so tracing neither allocates per ray nor shares counters.
+#[derive(Debug, Default)]
+pub struct Workspace {
+    /// Coefficients of the current restricted polynomial, low → high.
+    pub(crate) coeffs: Vec<f64>,
+    /// Scratch for the trivariate restriction.
+    pub(crate) restrict: RestrictScratch,
+    /// Counters.
+    pub stats: TraceStats,
+}
+
+impl Workspace {
+    /// A fresh workspace with zeroed counters.
+    pub fn new() -> Self {
+        Workspace::default()
+    }
+}
