@@ -14,11 +14,29 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod bernstein;
 mod bivariate;
+mod closed_form;
+mod int_poly;
+mod isolate;
 mod ops;
+mod refine;
+mod root_error;
+mod root_interval;
+mod root_options;
 mod scalar;
+mod stam;
+mod stats;
+mod sturm;
+pub mod testutil;
 mod univariate;
 
 pub use crate::bivariate::{BiPoly, Monomial, QBiPoly};
+pub use crate::root_error::RootError;
+pub use crate::root_interval::RootInterval;
+pub use crate::root_options::{IsolationMethod, RefineMethod, RootOptions};
 pub use crate::scalar::{F64_NEGLIGIBLE_REL, Rat, Scalar, rat_from_f64, rat_to_f64};
+pub use crate::stam::StamSturm;
+pub use crate::stats::{RootStats, STATS_DEGREES};
+pub use crate::sturm::SturmSequence;
 pub use crate::univariate::{Bounded, Poly, QPoly, gamma};

@@ -1,0 +1,173 @@
+//! Certified closed forms for degrees 1 and 2.
+//!
+//! The quadratic uses the cancellation-free pair `q = −(b + sign(b)·√Δ)/2`, `x₁ = q/a`,
+//! `x₂ = c/q` (Numerical Recipes §5.6; Higham §1.8), never `(−b ± √Δ)/2a`. Each root found
+//! is then *certified* by a sign change of the stored polynomial across `[r − δ, r + δ]`,
+//! evaluated with a rigorous error bound, so a closed-form answer is as trustworthy as the
+//! general path. When a sign, the discriminant or an interval end cannot be decided, the
+//! function answers `None` ("undecided") and the caller runs the general certified path.
+//!
+//! Degrees 3 and 4 have no closed form here on purpose: Cardano and Ferrari lose accuracy to
+//! cancellation on exactly the hard cases (POV-Ray's quartic is off by ±0.1 at scale 1e7),
+//! and the Bernstein path is certified and fast enough (see `paper-notes/isolation.md`).
+
+use crate::bernstein::certified_sign;
+
+/// The smallest root of `c0 + c1·x` in `(t_min, t_max]`: `Some(Some(r))`, `Some(None)` when
+/// there is certainly none, `None` when undecided. Requires `c1 ≠ 0`, finite input.
+///
+/// # Accuracy
+/// `r = fl(−c0/c1)` is correctly rounded, so `|r − root| ≤ ½ ulp(root)`; membership of the
+/// interval is decided only with a margin of one ulp.
+pub(crate) fn linear_smallest(c: &[f64], t_min: f64, t_max: f64) -> Option<Option<f64>> {
+    let r = -c[0] / c[1];
+    if !r.is_finite() {
+        return None;
+    }
+    // |r − root| ≤ u·|root| + underflow, well inside one ulp on each side.
+    let (below, above) = (r.next_down(), r.next_up());
+    if below > t_min && above <= t_max {
+        Some(Some(r))
+    } else if above <= t_min || below > t_max {
+        Some(None)
+    } else {
+        None
+    }
+}
+
+/// The smallest root of `c0 + c1·x + c2·x²` in `(t_min, t_max]`: `Some(Some(r))` with
+/// `|r − root| ≤ x_tol`, `Some(None)` when there is certainly none, `None` when undecided
+/// (near-double root, a root within `x_tol` of an interval end, or `x_tol` below what `f64`
+/// can certify there). Requires `c2 ≠ 0`, finite input.
+pub(crate) fn quadratic_smallest(
+    c: &[f64],
+    t_min: f64,
+    t_max: f64,
+    x_tol: f64,
+) -> Option<Option<f64>> {
+    let (c0, c1, c2) = (c[0], c[1], c[2]);
+    // Δ = c1² − 4·c0·c2 with an error bound: three roundings on each path, relative to the
+    // sum of the magnitudes; the discriminant only decides "no real root" here.
+    let disc = c1 * c1 - 4.0 * c0 * c2;
+    // The last term covers underflow (at most 2^-1074 per rounding).
+    let disc_err = 4.0 * f64::EPSILON * (c1 * c1 + (4.0 * c0 * c2).abs()) + 1e-322;
+    if !disc.is_finite() {
+        return None;
+    }
+    if disc < -disc_err {
+        return Some(None);
+    }
+    if disc <= disc_err {
+        return None;
+    }
+    let sq = disc.sqrt();
+    let q = -0.5 * (c1 + if c1 >= 0.0 { sq } else { -sq });
+    let (x1, x2) = (q / c2, c0 / q);
+    let (r1, r2) = if x1 <= x2 { (x1, x2) } else { (x2, x1) };
+    if !(r1.is_finite() && r2.is_finite()) || r1 == r2 {
+        return None;
+    }
+    let delta = (0.5 * x_tol * (1.0 - 4.0 * f64::EPSILON)).min(0.25 * (r2 - r1));
+    // Sign of p left of both roots and right of both: that of c2; between them: −c2.
+    let s_out: i8 = if c2 > 0.0 { 1 } else { -1 };
+    for (k, r) in [r1, r2].into_iter().enumerate() {
+        let (lo, hi) = (r - delta, r + delta);
+        if !(lo < r && r < hi) {
+            return None;
+        }
+        // Certify: the smaller root has p(lo) = s_out, p(hi) = −s_out (lo lies left of both
+        // roots, hi between them); the larger root the mirror image.
+        let (want_lo, want_hi) = if k == 0 {
+            (s_out, -s_out)
+        } else {
+            (-s_out, s_out)
+        };
+        if certified_sign(c, lo) != want_lo || certified_sign(c, hi) != want_hi {
+            return None;
+        }
+        // Now the root is certainly in (lo, hi), and (for the larger root) the smaller one
+        // was certainly at or below t_min.
+        if hi <= t_min {
+            continue;
+        }
+        if lo > t_max {
+            return Some(None);
+        }
+        if lo > t_min && hi <= t_max {
+            return Some(Some(r));
+        }
+        return None;
+    }
+    Some(None)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quadratic_without_cancellation() {
+        // x² − 1e8·x + 1: roots ≈ 1e-8 and 1e8. The textbook formula loses the small root.
+        let c = [1.0, -1e8, 1.0];
+        let r = quadratic_smallest(&c, 0.0, 1.0, 1e-20).unwrap().unwrap();
+        assert!((r - 1e-8).abs() <= 1e-20, "small root {r:e}");
+        let naive = (1e8 - (1e16f64 - 4.0).sqrt()) / 2.0;
+        assert!(
+            (naive - 1e-8).abs() > 1e-10,
+            "the naive formula is wrong here: {naive:e}"
+        );
+        let r = quadratic_smallest(&c, 1.0, 1e9, 1e-6).unwrap().unwrap();
+        assert!((r - 1e8).abs() <= 1e-6, "large root {r:e}");
+    }
+
+    #[test]
+    fn quadratic_decides_or_defers() {
+        let c = [2.0, 0.0, 1.0]; // x² + 2: no real root
+        assert_eq!(
+            quadratic_smallest(&c, -10.0, 10.0, 1e-9),
+            Some(None),
+            "complex roots"
+        );
+        let c = [1.0, -2.0, 1.0]; // (x − 1)²: double root, undecidable in f64
+        assert_eq!(
+            quadratic_smallest(&c, -10.0, 10.0, 1e-9),
+            None,
+            "defers to exact"
+        );
+        let c = [-1.0, 0.0, 1.0]; // roots ±1; the interval end sits on a root
+        assert_eq!(
+            quadratic_smallest(&c, -1.0, 0.5, 1e-9),
+            None,
+            "root at t_min: defers"
+        );
+        assert_eq!(
+            quadratic_smallest(&c, -0.5, 0.5, 1e-9),
+            Some(None),
+            "none inside"
+        );
+        assert_eq!(
+            quadratic_smallest(&c, -2.0, 0.5, 1e-9),
+            Some(Some(-1.0)),
+            "−1"
+        );
+    }
+
+    #[test]
+    fn linear_membership_margins() {
+        assert_eq!(
+            linear_smallest(&[-3.0, 2.0], 0.0, 2.0),
+            Some(Some(1.5)),
+            "1.5 inside"
+        );
+        assert_eq!(
+            linear_smallest(&[-3.0, 2.0], 1.5, 2.0),
+            None,
+            "root on the open end"
+        );
+        assert_eq!(
+            linear_smallest(&[-3.0, 2.0], 2.0, 3.0),
+            Some(None),
+            "outside"
+        );
+    }
+}

@@ -1,0 +1,215 @@
+//! [`IntPoly`]: integer polynomials, the working form of exact Sturm sequences.
+//!
+//! Every exact root computation in this crate multiplies a rational polynomial by a *positive*
+//! constant to clear denominators and removes the *positive* content. Positive scalings keep
+//! the sign of the polynomial at every point, which is all a Sturm sequence needs, and integer
+//! coefficients make evaluation at a rational point a gcd-free integer computation.
+
+use num_bigint::{BigInt, Sign};
+use num_integer::Integer;
+use num_traits::{One, Signed, Zero};
+
+use crate::scalar::Rat;
+use crate::univariate::QPoly;
+
+/// A polynomial with integer coefficients, lowest degree first, no trailing zero.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct IntPoly {
+    c: Vec<BigInt>,
+}
+
+impl IntPoly {
+    fn trimmed(mut c: Vec<BigInt>) -> Self {
+        while c.last().is_some_and(Zero::is_zero) {
+            c.pop();
+        }
+        IntPoly { c }
+    }
+
+    /// `k·p` for the positive rational `k` that makes the coefficients coprime integers.
+    /// Same sign as `p` everywhere.
+    pub(crate) fn from_qpoly(p: &QPoly) -> Self {
+        let lcm = p
+            .coeffs()
+            .iter()
+            .fold(BigInt::one(), |l, c| l.lcm(c.denom()));
+        let ints = p
+            .coeffs()
+            .iter()
+            .map(|c| c.numer() * (&lcm / c.denom()))
+            .collect();
+        IntPoly::trimmed(ints).primitive()
+    }
+
+    /// Divides by the positive gcd of the coefficients.
+    fn primitive(mut self) -> Self {
+        let g = self.c.iter().fold(BigInt::zero(), |g, c| g.gcd(c));
+        if !g.is_zero() && !g.is_one() {
+            for x in &mut self.c {
+                *x /= &g;
+            }
+        }
+        self
+    }
+
+    pub(crate) fn is_zero(&self) -> bool {
+        self.c.is_empty()
+    }
+
+    pub(crate) fn degree(&self) -> usize {
+        self.c.len().saturating_sub(1)
+    }
+
+    pub(crate) fn to_qpoly(&self) -> QPoly {
+        QPoly::new_raw(self.c.iter().cloned().map(Rat::from_integer).collect())
+    }
+
+    /// `p'` with its positive content removed.
+    pub(crate) fn derivative(&self) -> Self {
+        let c = self
+            .c
+            .iter()
+            .enumerate()
+            .skip(1)
+            .map(|(i, x)| x * BigInt::from(i))
+            .collect();
+        IntPoly::trimmed(c).primitive()
+    }
+
+    /// A positive multiple of `−rem(self, d)` with coprime integer coefficients: the next
+    /// member of a Sturm sequence (seed eq. 3.20, `V_k = Q_{k−1}·V_{k−1} − V_{k−2}` up to a
+    /// positive factor). `d` must be non-zero.
+    ///
+    /// The pseudo-remainder `r = lc(d)^(m−n+1)·self mod d` differs from the true remainder by
+    /// the factor `lc(d)^(m−n+1)`, whose sign is corrected so the result keeps the sign of
+    /// `−rem`.
+    pub(crate) fn neg_rem(&self, d: &IntPoly) -> Self {
+        let n = d.degree();
+        let lc = d.c.last().expect("divisor is non-zero");
+        if self.is_zero() || self.degree() < n {
+            return IntPoly::trimmed(self.c.iter().map(|x| -x).collect()).primitive();
+        }
+        let mut r = self.c.clone();
+        let steps = self.degree() - n + 1;
+        for k in (n..=self.degree()).rev() {
+            let top = r[k].clone();
+            if top.is_zero() {
+                for x in r.iter_mut().take(k) {
+                    *x *= lc;
+                }
+                continue;
+            }
+            for x in r.iter_mut().take(k) {
+                *x *= lc;
+            }
+            for (j, dj) in d.c.iter().enumerate().take(n) {
+                r[k - n + j] -= &top * dj;
+            }
+            r[k] = BigInt::zero();
+        }
+        r.truncate(n);
+        // r = lc^steps · rem; we want a positive multiple of −rem.
+        let flip = lc.is_negative() && steps % 2 == 1;
+        let r = if flip {
+            r
+        } else {
+            r.into_iter().map(|x| -x).collect()
+        };
+        IntPoly::trimmed(r).primitive()
+    }
+
+    /// Exact quotient by `g`, assumed to divide `self`, rescaled by a positive constant to
+    /// coprime integers. (Rational division then clearing: `g` need not be monic.)
+    pub(crate) fn div_exact(&self, g: &IntPoly) -> Self {
+        let (q, _) = self
+            .to_qpoly()
+            .div_rem(&g.to_qpoly())
+            .expect("divisor is non-zero");
+        IntPoly::from_qpoly(&q)
+    }
+
+    /// The exact sign (−1, 0, 1) of `p(x)`.
+    ///
+    /// With `x = n/d`, `d > 0`, this is the sign of `d^deg·p(x) = Σ cᵢ nⁱ d^(deg−i)`, computed
+    /// by a homogeneous Horner scheme in integers (no gcds).
+    pub(crate) fn sign_at(&self, x: &Rat) -> i8 {
+        let Some(top) = self.c.last() else {
+            return 0;
+        };
+        let (n, d) = (x.numer(), x.denom());
+        let mut acc = top.clone();
+        let mut dpow = BigInt::one();
+        for c in self.c.iter().rev().skip(1) {
+            dpow *= d;
+            acc = acc * n + c * &dpow;
+        }
+        sign_of(&acc)
+    }
+}
+
+fn sign_of(x: &BigInt) -> i8 {
+    match x.sign() {
+        Sign::Minus => -1,
+        Sign::NoSign => 0,
+        Sign::Plus => 1,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ip(c: &[i64]) -> IntPoly {
+        IntPoly::trimmed(c.iter().map(|&x| BigInt::from(x)).collect())
+    }
+    fn q(n: i64, d: i64) -> Rat {
+        Rat::new(n.into(), d.into())
+    }
+
+    #[test]
+    fn sign_at_matches_rational_horner() {
+        let p = ip(&[-6, 11, -6, 1]); // (x−1)(x−2)(x−3)
+        let qp = p.to_qpoly();
+        for (n, d) in [(1, 1), (3, 2), (5, 2), (7, 3), (-1, 5), (4, 1)] {
+            let x = q(n, d);
+            let v = qp.eval(&x);
+            let expect = if v.is_zero() {
+                0
+            } else if v.is_positive() {
+                1
+            } else {
+                -1
+            };
+            assert_eq!(p.sign_at(&x), expect, "sign at {x}");
+        }
+    }
+
+    #[test]
+    fn neg_rem_is_a_positive_multiple_of_minus_remainder() {
+        // Leading coefficient of the divisor negative, odd number of steps: sign must flip.
+        let a = ip(&[1, 0, 3, 2]);
+        let d = ip(&[5, 1, -3]);
+        let got = a.neg_rem(&d).to_qpoly();
+        let (_, r) = a.to_qpoly().div_rem(&d.to_qpoly()).unwrap();
+        let minus_r = -r;
+        // got = k·(−r) with k > 0: compare after making both monic and checking a sign.
+        assert_eq!(got.make_monic(), minus_r.make_monic(), "same line");
+        let x = q(7, 3);
+        let (sg, sr) = (got.eval(&x), minus_r.eval(&x));
+        assert!(
+            sg.is_positive() == sr.is_positive(),
+            "positive multiple: {sg} vs {sr}"
+        );
+    }
+
+    #[test]
+    fn from_qpoly_keeps_signs() {
+        let p = QPoly::new(vec![q(-1, 2), q(0, 1), q(-3, 4)]);
+        let i = IntPoly::from_qpoly(&p);
+        assert_eq!(
+            i,
+            ip(&[-2, 0, -3]),
+            "scaled by +4, not normalised to a positive lead"
+        );
+    }
+}

@@ -1,0 +1,869 @@
+//! Root queries (seed §3.5.2–3.5.3): [`Poly::smallest_root`], [`Poly::isolate_roots`] and
+//! [`Poly::real_roots`] for `f64` and [`Rat`] polynomials, with the method dispatch.
+//!
+//! The default `f64` path is certified at `f64` speed: signs at the interval ends are
+//! certified with a rigorous Horner bound, the roots are isolated by Descartes' rule in the
+//! Bernstein basis with rigorous coefficient error bounds ([`IsolationMethod::Bernstein`]),
+//! and refined inside certified brackets. Only when a needed sign cannot be certified does the
+//! query switch to exact rational arithmetic on the same stored polynomial (counted in
+//! [`RootStats::exact_fallbacks`]). See `paper-notes/isolation.md`.
+
+use crate::bernstein::{BernsteinIsolator, Bracket, Search, certified_sign};
+use crate::closed_form::{linear_smallest, quadratic_smallest};
+use crate::refine::{Refined, refine_bracket, refine_exact_f64};
+use crate::root_error::RootError;
+use crate::root_interval::RootInterval;
+use crate::root_options::{IsolationMethod, RefineMethod, RootOptions};
+use crate::scalar::{Rat, rat_from_f64, rat_to_f64};
+use crate::stam::StamSturm;
+use crate::stats::RootStats;
+use crate::sturm::{SturmSequence, check_finite};
+use crate::univariate::{Poly, QPoly};
+
+/// Most bisections of a heuristic (floating-point Sturm) isolation before it gives up: the
+/// interval is then narrower than 2^-200 of the original, far below `f64` resolution.
+const MAX_HEURISTIC_BISECTIONS: u32 = 200;
+
+/// A validated `f64` query range.
+enum Range {
+    /// Nothing to search: empty interval or a non-zero constant.
+    Empty,
+    /// Search `(lo, hi]`; both finite unless no finite root bound exists.
+    Search { lo: f64, hi: f64 },
+}
+
+/// Validates a query and narrows `(t_min, t_max]` to the root bound.
+fn prepare(p: &Poly<f64>, t_min: f64, t_max: f64, x_tol: f64) -> Result<Range, RootError> {
+    check_finite(p)?;
+    if p.is_zero() {
+        return Err(RootError::ZeroPolynomial);
+    }
+    if t_min.is_nan() || t_max.is_nan() {
+        return Err(RootError::NanBound);
+    }
+    if x_tol.is_nan() || x_tol < 0.0 {
+        return Err(RootError::InvalidTolerance);
+    }
+    if p.degree() == 0 || t_min >= t_max {
+        return Ok(Range::Empty);
+    }
+    let (mut lo, mut hi) = (t_min, t_max);
+    if let Some(b) = p.root_bound() {
+        // Every real root is in [−B, B]: the open end moves just below −B.
+        if lo < -b {
+            lo = (-b).next_down();
+        }
+        if hi > b {
+            hi = b;
+        }
+    }
+    if lo >= hi {
+        return Ok(Range::Empty);
+    }
+    Ok(Range::Search { lo, hi })
+}
+
+impl Poly<f64> {
+    /// The smallest distinct real root in `(t_min, t_max]`, within `x_tol` — the ray tracer's
+    /// query. `None` when there is no root there, and also for refused input (see
+    /// [`try_smallest_root`](Poly::try_smallest_root) for the reason).
+    ///
+    /// Runs the default certified method ([`IsolationMethod::Bernstein`] +
+    /// [`RefineMethod::Illinois`], closed forms for degrees 1–2). It stops at the first root:
+    /// roots further along are never isolated.
+    ///
+    /// # Accuracy
+    /// Certified for the stored coefficients, whatever the rounding:
+    /// * the root `r` returned satisfies `|returned − r| ≤ x_tol` (absolute), or is within one
+    ///   `f64` spacing of `r` when `x_tol` is smaller than that;
+    /// * no root of the stored polynomial lies in `(t_min, r)`, and `r ∈ (t_min, t_max]`
+    ///   (a root exactly at `t_min` is excluded, one exactly at `t_max` included);
+    /// * `None` means there is certainly no root in `(t_min, t_max]`.
+    ///
+    /// Multiple roots are found (a tangent ray's double root is a root); the multiplicity is
+    /// not reported. `t_min = −∞` and `t_max = +∞` are accepted. Roots are those of the
+    /// polynomial *as stored*: rounding that happened while building the coefficients is not
+    /// undone. Cost grows like `log(1/x_tol)` with the default refinement; a query that
+    /// needs exact arithmetic ([`RootStats::exact_fallbacks`]) is much slower.
+    ///
+    /// # Examples
+    /// ```
+    /// use poly::Poly;
+    /// // (t − 1)(t − 2)(t − 3)(t − 4): the first root after t = 1.5 is 2.
+    /// let p = Poly::<f64>::from_roots(&[1.0, 2.0, 3.0, 4.0]);
+    /// let t = p.smallest_root(1.5, 10.0, 1e-12).unwrap();
+    /// assert!((t - 2.0).abs() <= 1e-12);
+    /// assert_eq!(p.smallest_root(4.0, 10.0, 1e-12), None); // the root at 4 is excluded
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn smallest_root(&self, t_min: f64, t_max: f64, x_tol: f64) -> Option<f64> {
+        let mut stats = RootStats::default();
+        self.smallest_root_with(t_min, t_max, &RootOptions::new(x_tol), &mut stats)
+    }
+
+    /// [`smallest_root`](Poly::smallest_root) with explicit options and statistics.
+    ///
+    /// # Accuracy
+    /// As for [`smallest_root`](Poly::smallest_root) with `opts.x_tol` when
+    /// `opts.isolation` is [`IsolationMethod::Bernstein`] or [`IsolationMethod::Exact`].
+    /// [`IsolationMethod::Sturm`] and [`IsolationMethod::StamSturm`] are heuristics: their
+    /// counts can be wrong, so they can miss a root or report a wrong one.
+    pub fn smallest_root_with(
+        &self,
+        t_min: f64,
+        t_max: f64,
+        opts: &RootOptions,
+        stats: &mut RootStats,
+    ) -> Option<f64> {
+        self.try_smallest_root(t_min, t_max, opts, stats)
+            .ok()
+            .flatten()
+    }
+
+    /// [`smallest_root_with`](Poly::smallest_root_with), telling refused input apart from
+    /// "no root".
+    ///
+    /// # Errors
+    /// [`RootError::NonFiniteCoefficient`], [`RootError::ZeroPolynomial`],
+    /// [`RootError::NanBound`], [`RootError::InvalidTolerance`]. An empty or reversed
+    /// interval is not an error: it holds no root (`Ok(None)`).
+    pub fn try_smallest_root(
+        &self,
+        t_min: f64,
+        t_max: f64,
+        opts: &RootOptions,
+        stats: &mut RootStats,
+    ) -> Result<Option<f64>, RootError> {
+        stats.count_query(self.degree());
+        let result = self.smallest_root_inner(t_min, t_max, opts, stats);
+        match result {
+            Err(_) => stats.rejected += 1,
+            Ok(Some(_)) => stats.with_root += 1,
+            Ok(None) => {}
+        }
+        result
+    }
+
+    fn smallest_root_inner(
+        &self,
+        t_min: f64,
+        t_max: f64,
+        opts: &RootOptions,
+        stats: &mut RootStats,
+    ) -> Result<Option<f64>, RootError> {
+        let (lo, hi) = match prepare(self, t_min, t_max, opts.x_tol)? {
+            Range::Empty => return Ok(None),
+            Range::Search { lo, hi } => (lo, hi),
+        };
+        Ok(match opts.isolation {
+            IsolationMethod::Bernstein => certified_smallest(self, lo, hi, opts, stats),
+            IsolationMethod::Exact => exact_smallest(self, lo, hi, opts.x_tol, stats),
+            IsolationMethod::Sturm => sturm_smallest(self, lo, hi, opts, stats),
+            IsolationMethod::StamSturm => {
+                StamSturm::new(self).and_then(|s| s.smallest_root(lo, hi, opts.x_tol))
+            }
+        })
+    }
+
+    /// Isolating intervals of every distinct real root in `(a, b]`, sorted and disjoint, by
+    /// the default certified method.
+    ///
+    /// # Accuracy
+    /// Certified: each [`RootInterval`] holds exactly one distinct root of the stored
+    /// polynomial (in the open interval, or exactly at a point interval), and no root of
+    /// `(a, b]` is missed. The intervals are not narrowed beyond what isolation needed; use
+    /// [`real_roots`](Poly::real_roots) for values. One caveat: two distinct roots closer than
+    /// one `f64` spacing cannot be separated by `f64` numbers; their intervals may then
+    /// overlap by that spacing.
+    ///
+    /// # Errors
+    /// As [`try_smallest_root`](Poly::try_smallest_root); an empty or reversed interval gives
+    /// an empty vector.
+    ///
+    /// # Examples
+    /// ```
+    /// use poly::Poly;
+    /// let p = Poly::<f64>::from_roots(&[-1.5, 0.25, 3.0]);
+    /// let ivs = p.isolate_roots(-10.0, 10.0)?;
+    /// assert_eq!(ivs.len(), 3);
+    /// assert!(ivs[1].lo <= 0.25 && 0.25 <= ivs[1].hi);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn isolate_roots(&self, a: f64, b: f64) -> Result<Vec<RootInterval<f64>>, RootError> {
+        let mut stats = RootStats::default();
+        self.isolate_roots_with(a, b, &RootOptions::default(), &mut stats)
+    }
+
+    /// [`isolate_roots`](Poly::isolate_roots) with explicit options (the isolation method is
+    /// used, the refinement options are not) and statistics.
+    ///
+    /// # Accuracy
+    /// Certified for [`IsolationMethod::Bernstein`] and [`IsolationMethod::Exact`]; the two
+    /// Sturm methods are heuristics and their intervals are half-open `(lo, hi]` by their
+    /// counts.
+    pub fn isolate_roots_with(
+        &self,
+        a: f64,
+        b: f64,
+        opts: &RootOptions,
+        stats: &mut RootStats,
+    ) -> Result<Vec<RootInterval<f64>>, RootError> {
+        stats.count_query(self.degree());
+        let iso = self.isolate_inner(a, b, opts, stats);
+        match &iso {
+            Err(_) => stats.rejected += 1,
+            Ok(i) if !i.is_empty() => stats.with_root += 1,
+            Ok(_) => {}
+        }
+        Ok(match iso? {
+            Isolation::Certified(brackets) => brackets
+                .into_iter()
+                .map(|b| RootInterval { lo: b.lo, hi: b.hi })
+                .collect(),
+            Isolation::Exact(_, ivs) | Isolation::Heuristic(ivs) => ivs,
+        })
+    }
+
+    /// Every distinct real root in `(a, b]`, sorted, each within `x_tol`, by the default
+    /// certified method.
+    ///
+    /// # Accuracy
+    /// Certified: one value per distinct root of the stored polynomial in `(a, b]`, none
+    /// missed, each within `x_tol` of its root (absolute; within one `f64` spacing when
+    /// `x_tol` is smaller). Multiplicities are not reported. Cost: isolation plus
+    /// `O(log(1/x_tol))` evaluations per root.
+    ///
+    /// # Errors
+    /// As [`try_smallest_root`](Poly::try_smallest_root).
+    ///
+    /// # Examples
+    /// ```
+    /// use poly::Poly;
+    /// let p = Poly::new(vec![-2.0, 0.0, 1.0]); // x² − 2
+    /// let r = p.real_roots(f64::NEG_INFINITY, f64::INFINITY, 1e-14)?;
+    /// assert_eq!(r.len(), 2);
+    /// assert!((r[1] - 2f64.sqrt()).abs() <= 1e-14);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn real_roots(&self, a: f64, b: f64, x_tol: f64) -> Result<Vec<f64>, RootError> {
+        let mut stats = RootStats::default();
+        self.real_roots_with(a, b, &RootOptions::new(x_tol), &mut stats)
+    }
+
+    /// [`real_roots`](Poly::real_roots) with explicit options and statistics.
+    ///
+    /// # Accuracy
+    /// As [`real_roots`](Poly::real_roots) for the certified methods; heuristic for the two
+    /// Sturm methods.
+    pub fn real_roots_with(
+        &self,
+        a: f64,
+        b: f64,
+        opts: &RootOptions,
+        stats: &mut RootStats,
+    ) -> Result<Vec<f64>, RootError> {
+        stats.count_query(self.degree());
+        let iso = self.isolate_inner(a, b, opts, stats);
+        let iso = match iso {
+            Err(e) => {
+                stats.rejected += 1;
+                return Err(e);
+            }
+            Ok(i) => i,
+        };
+        let roots: Vec<f64> = match iso {
+            Isolation::Certified(brackets) => brackets
+                .into_iter()
+                .map(|b| refine_certified(self, b, opts.x_tol, opts.refine, stats))
+                .collect(),
+            Isolation::Exact(seq, ivs) => ivs
+                .iter()
+                .map(|iv| refine_exact_interval(&seq, iv, opts.x_tol))
+                .collect(),
+            Isolation::Heuristic(ivs) => ivs
+                .iter()
+                .map(|iv| refine_heuristic(self, iv, opts, stats))
+                .collect(),
+        };
+        if !roots.is_empty() {
+            stats.with_root += 1;
+        }
+        Ok(roots)
+    }
+
+    fn isolate_inner(
+        &self,
+        a: f64,
+        b: f64,
+        opts: &RootOptions,
+        stats: &mut RootStats,
+    ) -> Result<Isolation, RootError> {
+        let (lo, hi) = match prepare(self, a, b, opts.x_tol)? {
+            Range::Empty => return Ok(Isolation::Certified(Vec::new())),
+            Range::Search { lo, hi } => (lo, hi),
+        };
+        Ok(match opts.isolation {
+            IsolationMethod::Bernstein => {
+                let c = self.coeffs();
+                let certified = if lo.is_finite() && hi.is_finite() {
+                    let (s_min, s_max) = (certified_sign(c, lo), certified_sign(c, hi));
+                    (s_min != 0 && s_max != 0)
+                        .then(|| BernsteinIsolator::new(c, lo, hi, s_min, s_max))
+                        .flatten()
+                        .and_then(|iso| iso.all_roots(stats))
+                } else {
+                    None
+                };
+                match certified {
+                    Some(brackets) => Isolation::Certified(brackets),
+                    None => {
+                        stats.exact_fallbacks += 1;
+                        exact_isolation(self, lo, hi, false, stats)
+                    }
+                }
+            }
+            IsolationMethod::Exact => exact_isolation(self, lo, hi, false, stats),
+            IsolationMethod::Sturm => {
+                let seq = self.sturm()?;
+                Isolation::Heuristic(bisect_isolate(
+                    |x, y| seq.count_roots(x, y),
+                    lo,
+                    hi,
+                    false,
+                    stats,
+                ))
+            }
+            IsolationMethod::StamSturm => match StamSturm::new(self) {
+                Some(s) => Isolation::Heuristic(bisect_isolate(
+                    |x, y| s.count_roots(x, y),
+                    lo,
+                    hi,
+                    false,
+                    stats,
+                )),
+                None => Isolation::Heuristic(Vec::new()),
+            },
+        })
+    }
+}
+
+impl Isolation {
+    fn is_empty(&self) -> bool {
+        match self {
+            Isolation::Certified(b) => b.is_empty(),
+            Isolation::Exact(_, ivs) | Isolation::Heuristic(ivs) => ivs.is_empty(),
+        }
+    }
+}
+
+/// The isolation result, before conversion or refinement.
+enum Isolation {
+    /// Certified `f64` brackets from the Bernstein path.
+    Certified(Vec<Bracket>),
+    /// Exact isolation: the exact Sturm sequence and intervals with `f64` ends.
+    Exact(SturmSequence<Rat>, Vec<RootInterval<f64>>),
+    /// Floating-point Sturm counts: intervals `(lo, hi]` by the counts.
+    Heuristic(Vec<RootInterval<f64>>),
+}
+
+/// The default certified query: closed form, then Bernstein isolation, then refinement.
+fn certified_smallest(
+    p: &Poly<f64>,
+    lo: f64,
+    hi: f64,
+    opts: &RootOptions,
+    stats: &mut RootStats,
+) -> Option<f64> {
+    let c = p.coeffs();
+    if !(lo.is_finite() && hi.is_finite()) {
+        stats.exact_fallbacks += 1;
+        return exact_smallest(p, lo, hi, opts.x_tol, stats);
+    }
+    if opts.closed_form {
+        let decided = match c.len() {
+            2 => linear_smallest(c, lo, hi),
+            3 => quadratic_smallest(c, lo, hi, opts.x_tol),
+            _ => None,
+        };
+        if let Some(answer) = decided {
+            stats.closed_form += 1;
+            return answer;
+        }
+    }
+    let (s_min, s_max) = (certified_sign(c, lo), certified_sign(c, hi));
+    let search = if s_min != 0 && s_max != 0 {
+        match BernsteinIsolator::new(c, lo, hi, s_min, s_max) {
+            Some(iso) => iso.first_root(stats),
+            None => Search::Uncertain,
+        }
+    } else {
+        Search::Uncertain
+    };
+    match search {
+        Search::NoRoot => None,
+        Search::Found(b) => Some(refine_certified(p, b, opts.x_tol, opts.refine, stats)),
+        Search::Uncertain => {
+            stats.exact_fallbacks += 1;
+            exact_smallest(p, lo, hi, opts.x_tol, stats)
+        }
+    }
+}
+
+/// Refines a certified bracket, finishing with exact signs if `f64` gets stuck.
+fn refine_certified(
+    p: &Poly<f64>,
+    b: Bracket,
+    x_tol: f64,
+    method: RefineMethod,
+    stats: &mut RootStats,
+) -> f64 {
+    match refine_bracket(p.coeffs(), b, x_tol, method, stats) {
+        Refined::Root(r) => r,
+        Refined::Stuck(b) => {
+            stats.refine_fallbacks += 1;
+            refine_exact_f64(p, b, x_tol)
+        }
+    }
+}
+
+/// Exact answer to the smallest-root query on `(lo, hi]` (bounds may be infinite).
+fn exact_smallest(
+    p: &Poly<f64>,
+    lo: f64,
+    hi: f64,
+    x_tol: f64,
+    stats: &mut RootStats,
+) -> Option<f64> {
+    match exact_isolation(p, lo, hi, true, stats) {
+        Isolation::Exact(seq, ivs) => ivs.first().map(|iv| refine_exact_interval(&seq, iv, x_tol)),
+        _ => None,
+    }
+}
+
+/// Exact Sturm isolation of the stored polynomial on `(lo, hi]`, bisecting at `f64` points
+/// so that every interval end is an `f64` (seed §3.5.2 with exact counts).
+fn exact_isolation(
+    p: &Poly<f64>,
+    lo: f64,
+    hi: f64,
+    first_only: bool,
+    stats: &mut RootStats,
+) -> Isolation {
+    let q = p.to_rat().expect("finite coefficients were checked");
+    let seq = q.sturm().expect("non-zero polynomial was checked");
+    // Infinite ends: the exact Cauchy bound holds every root strictly inside (−B, B).
+    let bound = q
+        .cauchy_bound()
+        .map(|b| rat_to_f64(&b).next_up())
+        .unwrap_or(f64::MAX);
+    let lo = if lo.is_finite() {
+        lo
+    } else {
+        -bound.min(f64::MAX)
+    };
+    let hi = if hi.is_finite() {
+        hi
+    } else {
+        bound.min(f64::MAX)
+    };
+    let count_at = |x: f64| seq.sign_changes_at(&rat_from_f64(x).expect("finite"));
+    let mut out = Vec::new();
+    let mut stack = vec![(lo, hi, count_at(lo), count_at(hi))];
+    while let Some((a, b, va, vb)) = stack.pop() {
+        let n = va.saturating_sub(vb);
+        if n == 0 {
+            continue;
+        }
+        let m = 0.5 * a + 0.5 * b;
+        let splittable = m > a && m < b;
+        if n == 1 || !splittable {
+            // One root in (a, b]; or several roots closer than one f64 spacing, which f64
+            // numbers cannot separate (documented on isolate_roots).
+            let at_b = seq.sign_of_square_free_at(&rat_from_f64(b).expect("finite")) == 0;
+            for _ in 0..n {
+                out.push(if at_b && n == 1 {
+                    RootInterval { lo: b, hi: b }
+                } else {
+                    RootInterval { lo: a, hi: b }
+                });
+            }
+            if first_only {
+                break;
+            }
+            continue;
+        }
+        stats.subdivisions += 1;
+        let vm = count_at(m);
+        stack.push((m, b, vm, vb));
+        stack.push((a, m, va, vm));
+    }
+    Isolation::Exact(seq, out)
+}
+
+/// Refines an exact-isolation interval with exact signs and rounds to `f64`.
+///
+/// # Accuracy
+/// Within `x_tol` of the root (absolute), or one `f64` spacing when `x_tol` is smaller.
+fn refine_exact_interval(seq: &SturmSequence<Rat>, iv: &RootInterval<f64>, x_tol: f64) -> f64 {
+    if iv.is_point() {
+        return iv.lo;
+    }
+    let lo = rat_from_f64(iv.lo).expect("finite");
+    let hi = rat_from_f64(iv.hi).expect("finite");
+    refine_rat_to_f64(seq, lo, hi, x_tol)
+}
+
+/// Bisection with exact signs of the square-free part, from an open interval `(lo, hi)` with
+/// one root (signs only at `hi` and midpoints), to `f64` accuracy `x_tol`.
+fn refine_rat_to_f64(seq: &SturmSequence<Rat>, mut lo: Rat, mut hi: Rat, x_tol: f64) -> f64 {
+    let tol = rat_from_f64(x_tol).expect("tolerance was checked");
+    let two = Rat::from_integer(2.into());
+    let s_hi = seq.sign_of_square_free_at(&hi);
+    if s_hi == 0 {
+        return rat_to_f64(&hi);
+    }
+    loop {
+        let mid = (&lo + &hi) / &two;
+        let (flo, fhi) = (rat_to_f64(&lo), rat_to_f64(&hi));
+        if &hi - &lo <= tol || fhi <= flo.next_up() {
+            return rat_to_f64(&mid);
+        }
+        match seq.sign_of_square_free_at(&mid) {
+            0 => return rat_to_f64(&mid),
+            s if s == s_hi => hi = mid,
+            _ => lo = mid,
+        }
+    }
+}
+
+/// Stam's isolation algorithm (seed §3.5.2) with a floating-point count: keep halving
+/// `(a, b]` until each piece holds one root by the count.
+fn bisect_isolate(
+    count: impl Fn(f64, f64) -> usize,
+    lo: f64,
+    hi: f64,
+    first_only: bool,
+    stats: &mut RootStats,
+) -> Vec<RootInterval<f64>> {
+    let mut out = Vec::new();
+    let mut stack = vec![(lo, hi, 0u32)];
+    while let Some((a, b, depth)) = stack.pop() {
+        let n = count(a, b);
+        if n == 0 {
+            continue;
+        }
+        let m = 0.5 * a + 0.5 * b;
+        if n == 1 || depth >= MAX_HEURISTIC_BISECTIONS || !(m > a && m < b) {
+            out.push(RootInterval { lo: a, hi: b });
+            if first_only {
+                break;
+            }
+            continue;
+        }
+        stats.subdivisions += 1;
+        stack.push((m, b, depth + 1));
+        stack.push((a, m, depth + 1));
+    }
+    out
+}
+
+/// Floating-point Sturm query (heuristic): leftmost interval by counts, then refinement.
+fn sturm_smallest(
+    p: &Poly<f64>,
+    lo: f64,
+    hi: f64,
+    opts: &RootOptions,
+    stats: &mut RootStats,
+) -> Option<f64> {
+    let seq = p.sturm().ok()?;
+    let ivs = bisect_isolate(|x, y| seq.count_roots(x, y), lo, hi, true, stats);
+    ivs.first().map(|iv| refine_heuristic(p, iv, opts, stats))
+}
+
+/// Refines a heuristic interval `(lo, hi]`: with certified opposite end signs as a certified
+/// bracket; otherwise (no sign change seen, e.g. a double root) its midpoint once narrow
+/// enough by plain bisection of the value's magnitude is not possible, so the midpoint.
+fn refine_heuristic(
+    p: &Poly<f64>,
+    iv: &RootInterval<f64>,
+    opts: &RootOptions,
+    stats: &mut RootStats,
+) -> f64 {
+    let c = p.coeffs();
+    let (lo, hi) = (iv.lo.max(-f64::MAX), iv.hi.min(f64::MAX));
+    let (s_lo, s_hi) = (certified_sign(c, lo), certified_sign(c, hi));
+    if s_lo != 0 && s_hi == -s_lo {
+        match refine_bracket(c, Bracket { lo, hi, s_lo }, opts.x_tol, opts.refine, stats) {
+            Refined::Root(r) => r,
+            Refined::Stuck(b) => 0.5 * b.lo + 0.5 * b.hi,
+        }
+    } else if s_hi == 0 && s_lo != 0 {
+        hi
+    } else {
+        0.5 * lo + 0.5 * hi
+    }
+}
+
+impl QPoly {
+    /// Isolating intervals of every distinct real root in `(a, b]`, exactly (seed §3.5.2:
+    /// bisection driven by exact Sturm counts).
+    ///
+    /// # Exactness
+    /// Exact and certified: each interval holds exactly one distinct root (open interval, or
+    /// the point itself when `lo == hi`), intervals are disjoint and sorted, and no root in
+    /// `(a, b]` is missed. A root at `a` is excluded, one at `b` included. An empty or
+    /// reversed interval gives an empty vector.
+    ///
+    /// # Errors
+    /// [`RootError::ZeroPolynomial`].
+    ///
+    /// # Complexity
+    /// One exact Sturm sequence, then two evaluations of it per bisection; the number of
+    /// bisections grows with `log(1/separation)` of the closest roots.
+    ///
+    /// # Examples
+    /// ```
+    /// use poly::{QPoly, Rat};
+    /// let q = |n: i64, d: i64| Rat::new(n.into(), d.into());
+    /// let p = QPoly::from_roots(&[q(1, 3), q(1, 2), q(2, 1)]);
+    /// let ivs = p.isolate_roots(&q(0, 1), &q(2, 1))?;
+    /// assert_eq!(ivs.len(), 3);
+    /// assert!(ivs[2].is_point() && ivs[2].lo == q(2, 1)); // the end b = 2 is a root
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn isolate_roots(&self, a: &Rat, b: &Rat) -> Result<Vec<RootInterval<Rat>>, RootError> {
+        let seq = self.sturm()?;
+        Ok(isolate_rat(&seq, a, b, false))
+    }
+
+    /// Every distinct real root in `(a, b]`, sorted, as `f64` approximations.
+    ///
+    /// # Accuracy
+    /// Each value is within `x_tol` of its exact root (absolute), or within one `f64` spacing
+    /// when `x_tol` is smaller (refinement is exact; only the final rounding is inexact).
+    ///
+    /// # Errors
+    /// [`RootError::ZeroPolynomial`], [`RootError::InvalidTolerance`].
+    pub fn real_roots(&self, a: &Rat, b: &Rat, x_tol: f64) -> Result<Vec<f64>, RootError> {
+        check_tol(x_tol)?;
+        let seq = self.sturm()?;
+        Ok(isolate_rat(&seq, a, b, false)
+            .into_iter()
+            .map(|iv| rat_interval_to_f64(&seq, iv, x_tol))
+            .collect())
+    }
+
+    /// The smallest distinct real root in `(a, b]` as an `f64` within `x_tol`; `None` when
+    /// there is none, for the zero polynomial, or for a NaN or negative `x_tol`.
+    ///
+    /// # Accuracy
+    /// As [`real_roots`](Poly::real_roots); only the first root is isolated.
+    pub fn smallest_root(&self, a: &Rat, b: &Rat, x_tol: f64) -> Option<f64> {
+        check_tol(x_tol).ok()?;
+        let seq = self.sturm().ok()?;
+        isolate_rat(&seq, a, b, true)
+            .into_iter()
+            .next()
+            .map(|iv| rat_interval_to_f64(&seq, iv, x_tol))
+    }
+}
+
+impl SturmSequence<Rat> {
+    /// Narrows an isolating interval of this sequence's polynomial to width at most
+    /// `2^-bits`, exactly (bisection on the sign of the square-free part, seed §3.5.3).
+    ///
+    /// # Exactness
+    /// Exact: the result holds the same root, in the open interval or as a point. The
+    /// interval must come from [`Poly::<Rat>::isolate_roots`](Poly::isolate_roots) of the
+    /// same polynomial (one root in the open interval).
+    ///
+    /// # Complexity
+    /// About `bits + log2(width)` exact evaluations of `V₀`.
+    pub fn refine_interval(&self, iv: &RootInterval<Rat>, bits: u32) -> RootInterval<Rat> {
+        let width = Rat::new(1.into(), num_bigint::BigInt::from(1) << bits as usize);
+        let (lo, hi) = crate::refine::refine_rational(self, &iv.lo, &iv.hi, &width);
+        RootInterval { lo, hi }
+    }
+}
+
+fn check_tol(x_tol: f64) -> Result<(), RootError> {
+    if x_tol.is_nan() || x_tol < 0.0 || x_tol.is_infinite() {
+        Err(RootError::InvalidTolerance)
+    } else {
+        Ok(())
+    }
+}
+
+/// Exact isolation on rational bounds; intervals in the crate convention.
+fn isolate_rat(
+    seq: &SturmSequence<Rat>,
+    a: &Rat,
+    b: &Rat,
+    first_only: bool,
+) -> Vec<RootInterval<Rat>> {
+    let mut out = Vec::new();
+    if a >= b {
+        return out;
+    }
+    let two = Rat::from_integer(2.into());
+    let mut stack = vec![(
+        a.clone(),
+        b.clone(),
+        seq.sign_changes_at(a),
+        seq.sign_changes_at(b),
+    )];
+    while let Some((lo, hi, vlo, vhi)) = stack.pop() {
+        let n = vlo.saturating_sub(vhi);
+        if n == 0 {
+            continue;
+        }
+        if n == 1 {
+            let iv = if seq.sign_of_square_free_at(&hi) == 0 {
+                RootInterval { lo: hi.clone(), hi }
+            } else {
+                RootInterval { lo, hi }
+            };
+            out.push(iv);
+            if first_only {
+                break;
+            }
+            continue;
+        }
+        let mid = (&lo + &hi) / &two;
+        let vm = seq.sign_changes_at(&mid);
+        stack.push((mid.clone(), hi, vm, vhi));
+        stack.push((lo, mid, vlo, vm));
+    }
+    out
+}
+
+fn rat_interval_to_f64(seq: &SturmSequence<Rat>, iv: RootInterval<Rat>, x_tol: f64) -> f64 {
+    if iv.is_point() {
+        rat_to_f64(&iv.lo)
+    } else {
+        refine_rat_to_f64(seq, iv.lo, iv.hi, x_tol)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testutil::{planted, rat};
+
+    /// The exact smallest root of the stored polynomial in (lo, hi], as an interval.
+    fn oracle(p: &Poly<f64>, lo: f64, hi: f64) -> Option<RootInterval<Rat>> {
+        let q = p.to_rat().unwrap();
+        let (lo, hi) = (rat_from_f64(lo).unwrap(), rat_from_f64(hi).unwrap());
+        let seq = q.sturm().unwrap();
+        isolate_rat(&seq, &lo, &hi, true)
+            .into_iter()
+            .next()
+            .map(|iv| seq.refine_interval(&iv, 80))
+    }
+
+    fn check(p: &Poly<f64>, lo: f64, hi: f64, x_tol: f64, opts: &RootOptions) {
+        let mut stats = RootStats::default();
+        let got = p.smallest_root_with(lo, hi, opts, &mut stats);
+        let want = oracle(p, lo, hi);
+        match (got, want) {
+            (None, None) => {}
+            (Some(r), Some(iv)) => {
+                let truth = rat_to_f64(&iv.lo);
+                let allowed = x_tol.max(truth.abs() * f64::EPSILON) * (1.0 + 1e-12);
+                assert!(
+                    (r - truth).abs() <= allowed,
+                    "{p:?} on ({lo}, {hi}]: got {r}, exact {truth}, {opts:?}"
+                );
+            }
+            (g, w) => panic!("{p:?} on ({lo}, {hi}]: got {g:?}, exact {w:?}, {opts:?}"),
+        }
+    }
+
+    #[test]
+    fn smallest_root_matches_exact_oracle_on_planted_and_awkward_cases() {
+        let opts = RootOptions::new(1e-12);
+        let cases: Vec<(Poly<f64>, f64, f64)> = vec![
+            (Poly::from_roots(&[1.0, 2.0, 3.0, 4.0]), 0.0, 10.0),
+            (Poly::from_roots(&[1.0, 2.0, 3.0, 4.0]), 1.0, 10.0), // root on the open end
+            (Poly::from_roots(&[1.0, 2.0, 3.0, 4.0]), 0.5, 1.0),  // root on the closed end
+            (Poly::from_roots(&[1.0, 1.0, 3.0, 4.0]), 0.0, 10.0), // double root first
+            (Poly::from_roots(&[0.3, 0.3000001, 0.7, 5.0]), 0.0, 10.0), // cluster
+            (Poly::new(vec![1.0, 0.0, 1.0, 0.0, 1.0]), -10.0, 10.0), // no real root
+            (
+                Poly::new(vec![-1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0]),
+                -2.0,
+                2.0,
+            ), // x⁶ − 1
+            (
+                planted(&[rat(1, 3), rat(2, 7), rat(-5, 11)]).to_f64(),
+                -1.0,
+                1.0,
+            ),
+            (Poly::new(vec![-2.0, 1.0]), 0.0, 2.0),
+            (Poly::new(vec![2.0, -3.0, 1.0]), 0.0, 1.0),
+        ];
+        for (p, lo, hi) in &cases {
+            for method in [IsolationMethod::Bernstein, IsolationMethod::Exact] {
+                for refine in [
+                    RefineMethod::Bisection,
+                    RefineMethod::Illinois,
+                    RefineMethod::NewtonBisection,
+                ] {
+                    let o = RootOptions {
+                        isolation: method,
+                        refine,
+                        ..opts
+                    };
+                    check(p, *lo, *hi, opts.x_tol, &o);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn bad_input_is_refused_not_miscounted() {
+        let p = Poly::new(vec![-1.0, 1.0]);
+        let mut s = RootStats::default();
+        let o = RootOptions::new(1e-9);
+        assert_eq!(
+            p.try_smallest_root(f64::NAN, 1.0, &o, &mut s),
+            Err(RootError::NanBound),
+            "NaN"
+        );
+        assert_eq!(
+            p.try_smallest_root(2.0, 0.0, &o, &mut s),
+            Ok(None),
+            "reversed: no root"
+        );
+        assert_eq!(p.try_smallest_root(1.0, 1.0, &o, &mut s), Ok(None), "empty");
+        let z = Poly::<f64>::zero();
+        assert_eq!(
+            z.try_smallest_root(0.0, 1.0, &o, &mut s),
+            Err(RootError::ZeroPolynomial),
+            "0"
+        );
+        let nan = Poly::new(vec![1.0, f64::INFINITY]);
+        assert_eq!(
+            nan.try_smallest_root(0.0, 1.0, &o, &mut s),
+            Err(RootError::NonFiniteCoefficient { index: 1 }),
+            "inf coefficient"
+        );
+        let bad_tol = RootOptions::new(-1.0);
+        assert_eq!(
+            p.try_smallest_root(0.0, 2.0, &bad_tol, &mut s),
+            Err(RootError::InvalidTolerance),
+            "tol"
+        );
+        assert_eq!(
+            Poly::new(vec![3.0]).smallest_root(-1.0, 1.0, 1e-9),
+            None,
+            "constant"
+        );
+        assert_eq!(s.rejected, 4, "four refusals counted");
+        assert_eq!(
+            p.smallest_root(f64::NEG_INFINITY, f64::INFINITY, 1e-12),
+            Some(1.0),
+            "infinite ends"
+        );
+    }
+}

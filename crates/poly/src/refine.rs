@@ -1,0 +1,421 @@
+//! Refinement of an isolating bracket (seed §3.5.3): bisection as in the seed, two faster
+//! safeguarded methods, and exact refinement when `f64` runs out of certain signs.
+//!
+//! Every `f64` method keeps a bracket `(lo, hi)` whose endpoint signs are certified with a
+//! rigorous Horner error bound ([`horner_bounded`]). A trial point whose sign is not certain
+//! is never used to move an end; so the iterate cannot leave the isolating interval and the
+//! root stays in the bracket whatever the rounding. See `paper-notes/refinement.md`.
+
+use num_traits::Signed;
+
+use crate::bernstein::{Bracket, certified_sign, horner_bounded};
+use crate::int_poly::IntPoly;
+use crate::root_options::RefineMethod;
+use crate::scalar::{Rat, rat_from_f64, rat_to_f64};
+use crate::stats::RootStats;
+use crate::sturm::SturmSequence;
+use crate::univariate::Poly;
+
+/// Most iterations of any `f64` refinement loop. Bisection needs at most about 2100 halvings
+/// to go from the widest `f64` interval to adjacent numbers; the faster methods fall back to
+/// bisection steps, so they finish well within this.
+const MAX_ITERATIONS: u32 = 2200;
+
+/// The result of an `f64` refinement.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Refined {
+    /// A value within the tolerance of the root (see [`refine_bracket`]).
+    Root(f64),
+    /// The sign of `p` could not be certified at a trial point before the bracket was narrow
+    /// enough; the root is still in this bracket.
+    Stuck(Bracket),
+}
+
+/// True when the bracket already meets the tolerance: its true width is at most `x_tol`, or
+/// no `f64` lies strictly between the ends.
+#[inline]
+fn narrow_enough(lo: f64, hi: f64, x_tol: f64) -> bool {
+    // fl(hi − lo) ≤ x_tol·(1 − ε) implies hi − lo ≤ x_tol exactly (one rounding, relative u).
+    hi - lo <= x_tol * (1.0 - f64::EPSILON) || hi <= lo.next_up()
+}
+
+/// A point strictly inside `(lo, hi)` (requires that one exists).
+#[inline]
+fn midpoint(lo: f64, hi: f64) -> f64 {
+    let m = lo + 0.5 * (hi - lo);
+    if m > lo && m < hi { m } else { lo.next_up() }
+}
+
+/// Refines a certified bracket to width `x_tol` with the chosen method.
+///
+/// # Accuracy
+/// On `Root(r)`: `|r − root| ≤ x_tol`, or `r` and the root are within one `f64` spacing when
+/// `x_tol` is below it. Precondition: `b` holds exactly one distinct root, of odd multiplicity,
+/// with `sign p(lo) = s_lo = −sign p(hi)` certified. Cost grows like `log2(width/x_tol)`
+/// evaluations for bisection, roughly its logarithm for Illinois and Newton on simple roots.
+pub(crate) fn refine_bracket(
+    p: &[f64],
+    b: Bracket,
+    x_tol: f64,
+    method: RefineMethod,
+    stats: &mut RootStats,
+) -> Refined {
+    match method {
+        RefineMethod::Bisection => bisection(p, b, x_tol, stats),
+        RefineMethod::Illinois => illinois(p, b, x_tol, stats),
+        RefineMethod::NewtonBisection => newton(p, b, x_tol, stats),
+    }
+}
+
+/// Stam's bisection (seed §3.5.3) with certified signs.
+fn bisection(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined {
+    let Bracket {
+        mut lo,
+        mut hi,
+        s_lo,
+    } = b;
+    for _ in 0..MAX_ITERATIONS {
+        if narrow_enough(lo, hi, x_tol) {
+            return Refined::Root(midpoint_or_lo(lo, hi));
+        }
+        let m = midpoint(lo, hi);
+        stats.refine_evals += 1;
+        match certified_sign(p, m) {
+            0 => return Refined::Stuck(Bracket { lo, hi, s_lo }),
+            s if s == s_lo => lo = m,
+            _ => hi = m,
+        }
+    }
+    Refined::Stuck(Bracket { lo, hi, s_lo })
+}
+
+fn midpoint_or_lo(lo: f64, hi: f64) -> f64 {
+    if hi <= lo.next_up() {
+        lo
+    } else {
+        midpoint(lo, hi)
+    }
+}
+
+/// Tries to close the bracket around a trial point `x` whose sign was uncertain: if
+/// `x − δ` and `x + δ` (clipped to the bracket) have certified signs on the two sides, the
+/// root is within `δ` of `x`.
+fn probe(p: &[f64], b: Bracket, x: f64, delta: f64, stats: &mut RootStats) -> Option<f64> {
+    let l = x - delta;
+    let h = x + delta;
+    stats.refine_evals += 2;
+    let left_ok = l <= b.lo || certified_sign(p, l) == b.s_lo;
+    let right_ok = h >= b.hi || certified_sign(p, h) == -b.s_lo;
+    (left_ok && right_ok).then_some(x)
+}
+
+/// Half the tolerance, slightly reduced so that `x ± δ` rounded stays within `x_tol` of `x`.
+fn half_tol(x_tol: f64) -> f64 {
+    0.5 * x_tol * (1.0 - 4.0 * f64::EPSILON)
+}
+
+/// Illinois regula falsi, safeguarded: the trial point is kept `δ = x_tol/2` away from the
+/// ends (so the far end closes in), and a bisection step replaces it whenever three steps have
+/// not halved the bracket.
+fn illinois(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined {
+    let Bracket {
+        mut lo,
+        mut hi,
+        s_lo,
+    } = b;
+    let (mut f_lo, _) = horner_bounded(p, lo);
+    let (mut f_hi, _) = horner_bounded(p, hi);
+    let delta = half_tol(x_tol);
+    let mut kept = 0i8; // +1: lo moved last, −1: hi moved last
+    let mut width_before = hi - lo;
+    for it in 0..MAX_ITERATIONS {
+        if narrow_enough(lo, hi, x_tol) {
+            return Refined::Root(midpoint_or_lo(lo, hi));
+        }
+        let mut x = if it % 3 == 2 && hi - lo > 0.5 * width_before {
+            midpoint(lo, hi)
+        } else {
+            lo - f_lo * ((hi - lo) / (f_hi - f_lo))
+        };
+        if it % 3 == 2 {
+            width_before = hi - lo;
+        }
+        // Keep the trial point inside and away from the ends.
+        let d = delta.min(0.25 * (hi - lo));
+        if x.is_nan() || x <= lo + d {
+            x = lo + d;
+        }
+        if x >= hi - d {
+            x = hi - d;
+        }
+        if !(x > lo && x < hi) {
+            x = midpoint(lo, hi);
+        }
+        stats.refine_evals += 1;
+        let (fx, err) = horner_bounded(p, x);
+        let s = if fx > err {
+            1
+        } else if -fx > err {
+            -1
+        } else {
+            0
+        };
+        if s == 0 {
+            let bracket = Bracket { lo, hi, s_lo };
+            return match probe(p, bracket, x, delta, stats) {
+                Some(r) => Refined::Root(r),
+                None => Refined::Stuck(bracket),
+            };
+        }
+        if s == s_lo {
+            lo = x;
+            f_lo = fx;
+            if kept == 1 {
+                f_hi *= 0.5;
+            }
+            kept = 1;
+        } else {
+            hi = x;
+            f_hi = fx;
+            if kept == -1 {
+                f_lo *= 0.5;
+            }
+            kept = -1;
+        }
+    }
+    Refined::Stuck(Bracket { lo, hi, s_lo })
+}
+
+/// Newton's method inside the bracket (the safeguard of Press et al., *Numerical Recipes*,
+/// `rtsafe`): a step that leaves the bracket, or is not less than half the step before the
+/// last, is replaced by bisection; steps shorter than `δ = x_tol/2` are lengthened to `δ` so
+/// the far end of the bracket closes in.
+fn newton(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined {
+    let Bracket {
+        mut lo,
+        mut hi,
+        s_lo,
+    } = b;
+    let delta = half_tol(x_tol);
+    let mut x = midpoint(lo, hi);
+    let mut step_old = hi - lo;
+    let mut step = step_old;
+    for _ in 0..MAX_ITERATIONS {
+        if narrow_enough(lo, hi, x_tol) {
+            return Refined::Root(midpoint_or_lo(lo, hi));
+        }
+        stats.refine_evals += 1;
+        let (fx, dfx, err) = horner_with_derivative(p, x);
+        let s = if fx > err {
+            1
+        } else if -fx > err {
+            -1
+        } else {
+            0
+        };
+        if s == 0 {
+            let bracket = Bracket { lo, hi, s_lo };
+            return match probe(p, bracket, x, delta, stats) {
+                Some(r) => Refined::Root(r),
+                None => Refined::Stuck(bracket),
+            };
+        }
+        if s == s_lo {
+            lo = x;
+        } else {
+            hi = x;
+        }
+        if narrow_enough(lo, hi, x_tol) {
+            return Refined::Root(midpoint_or_lo(lo, hi));
+        }
+        let newton_step = fx / dfx;
+        let mut next = x - newton_step;
+        let converging = (2.0 * newton_step).abs() <= step_old.abs();
+        step_old = step;
+        if next.is_finite() && next > lo && next < hi && converging {
+            step = newton_step;
+            // Lengthen a tiny step to δ, towards the root, so the bracket closes.
+            if newton_step.abs() < delta {
+                next = if next > x { x + delta } else { x - delta };
+                if !(next > lo && next < hi) {
+                    next = midpoint(lo, hi);
+                }
+            }
+            x = next;
+        } else {
+            x = midpoint(lo, hi);
+            step = 0.5 * (hi - lo);
+        }
+    }
+    Refined::Stuck(Bracket { lo, hi, s_lo })
+}
+
+/// `p(x)`, `p'(x)` and the error bound of `p(x)` from [`horner_bounded`].
+#[inline]
+fn horner_with_derivative(c: &[f64], x: f64) -> (f64, f64, f64) {
+    let mut d = 0.0;
+    let mut v = 0.0;
+    for &ci in c.iter().rev() {
+        d = d * x + v;
+        v = v * x + ci;
+    }
+    let (_, err) = horner_bounded(c, x);
+    (v, d, err)
+}
+
+/// Finishes a bracket with exact signs: bisection on rationals of the stored polynomial.
+///
+/// # Accuracy
+/// Returns `r` with `|r − root| ≤ x_tol`, or within one `f64` spacing of the root when
+/// `x_tol` is below it. Precondition as for [`refine_bracket`]. Cost: one exact evaluation
+/// per bit gained.
+pub(crate) fn refine_exact_f64(p: &Poly<f64>, b: Bracket, x_tol: f64) -> f64 {
+    let q = IntPoly::from_qpoly(&p.to_rat().expect("finite coefficients were checked"));
+    let mut lo = rat_from_f64(b.lo).expect("finite");
+    let mut hi = rat_from_f64(b.hi).expect("finite");
+    let tol = rat_from_f64(x_tol).expect("finite tolerance");
+    let s_lo = b.s_lo;
+    loop {
+        let mid = (&lo + &hi) / Rat::from_integer(2.into());
+        let (flo, fhi) = (rat_to_f64(&lo), rat_to_f64(&hi));
+        if &hi - &lo <= tol || fhi <= flo.next_up() {
+            return rat_to_f64(&mid);
+        }
+        match q.sign_at(&mid) {
+            0 => return rat_to_f64(&mid),
+            s if s == s_lo => lo = mid,
+            _ => hi = mid,
+        }
+    }
+}
+
+/// Refines a rational isolating interval of `seq`'s polynomial to width at most `2^-bits`,
+/// exactly.
+///
+/// The interval follows the crate convention: one distinct root in the open interval
+/// `(lo, hi)`, or the point `lo == hi`. Returns an interval of the same kind.
+pub(crate) fn refine_rational(
+    seq: &SturmSequence<Rat>,
+    lo: &Rat,
+    hi: &Rat,
+    width: &Rat,
+) -> (Rat, Rat) {
+    let (mut lo, mut hi) = (lo.clone(), hi.clone());
+    if lo == hi {
+        return (lo, hi);
+    }
+    let two = Rat::from_integer(2.into());
+    let s_hi = seq.sign_of_square_free_at(&hi);
+    // The root is simple for the square-free part V₀, which therefore changes sign across it;
+    // signs are taken at hi and the midpoint only, so lo may be a root of nothing or anything.
+    while &hi - &lo > *width {
+        let mid = (&lo + &hi) / &two;
+        let s = seq.sign_of_square_free_at(&mid);
+        if s == 0 {
+            return (mid.clone(), mid);
+        }
+        if s == s_hi {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    debug_assert!(!(&hi - &lo).is_negative(), "bracket stays ordered");
+    (lo, hi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sqrt2_bracket() -> (Poly<f64>, Bracket) {
+        (
+            Poly::new(vec![-2.0, 0.0, 1.0]),
+            Bracket {
+                lo: 1.0,
+                hi: 2.0,
+                s_lo: -1,
+            },
+        )
+    }
+
+    #[test]
+    fn every_method_reaches_the_tolerance() {
+        let (p, b) = sqrt2_bracket();
+        for method in [
+            RefineMethod::Bisection,
+            RefineMethod::Illinois,
+            RefineMethod::NewtonBisection,
+        ] {
+            for x_tol in [1e-3, 1e-9, 1e-13, 1e-15, 0.0] {
+                let mut stats = RootStats::default();
+                let r = match refine_bracket(p.coeffs(), b, x_tol, method, &mut stats) {
+                    Refined::Root(r) => r,
+                    Refined::Stuck(s) => {
+                        // Only below the f64 noise floor of x² − 2 near √2 (about 1e-15).
+                        assert!(x_tol < 1e-14, "{method:?} stuck at x_tol {x_tol}");
+                        assert!(
+                            s.lo < 2f64.sqrt() && 2f64.sqrt() <= s.hi,
+                            "root kept: {s:?}"
+                        );
+                        refine_exact_f64(&p, s, x_tol)
+                    }
+                };
+                let err = (r - 2f64.sqrt()).abs();
+                let allowed = x_tol.max(2f64.sqrt() * f64::EPSILON);
+                assert!(
+                    err <= allowed,
+                    "{method:?} x_tol {x_tol}: r = {r}, error {err:e}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn faster_methods_use_fewer_evaluations_than_bisection() {
+        let (p, b) = sqrt2_bracket();
+        let count = |m| {
+            let mut s = RootStats::default();
+            refine_bracket(p.coeffs(), b, 1e-14, m, &mut s);
+            s.refine_evals
+        };
+        let bis = count(RefineMethod::Bisection);
+        assert!(
+            bis >= 46,
+            "bisection needs log2(1e14) ≈ 47 halvings, used {bis}"
+        );
+        assert!(
+            count(RefineMethod::Illinois) < bis / 3,
+            "Illinois is superlinear"
+        );
+        assert!(
+            count(RefineMethod::NewtonBisection) < bis / 3,
+            "Newton is quadratic"
+        );
+    }
+
+    #[test]
+    fn exact_refinement_reaches_below_f64_noise() {
+        // (x − 1)^5 − 2^-50: f64 signs are uncertain within about 1.6e-3 of x = 1, and the
+        // only real root, 1 + 2^-10, lies in that fog.
+        let mut c = Poly::<f64>::from_roots(&[1.0; 5]).into_coeffs();
+        c[0] -= 2f64.powi(-50);
+        let p = Poly::new(c);
+        let b = Bracket {
+            lo: 0.5,
+            hi: 1.5,
+            s_lo: -1,
+        };
+        let mut stats = RootStats::default();
+        let stuck = refine_bracket(p.coeffs(), b, 1e-12, RefineMethod::Bisection, &mut stats);
+        assert!(
+            matches!(stuck, Refined::Stuck(_)),
+            "f64 cannot certify signs near 1: {stuck:?}"
+        );
+        let r = refine_exact_f64(&p, b, 1e-12);
+        assert!(
+            (r - (1.0 + 2f64.powi(-10))).abs() <= 1e-12,
+            "exact refinement: {r}"
+        );
+    }
+}

@@ -1,0 +1,190 @@
+//! [`StamSturm`]: Stam's 1988 Sturm-sequence root finder, as written in `ray2.c` (seed,
+//! Annexe B: `Sturm`, `V`, `W`, `IntAlgSurf`, `Isolate`, `Zero`), kept for comparison.
+//!
+//! The port keeps his arithmetic on purpose — the cross-multiplied remainder recurrence, the
+//! division by the absolute value of each new leading coefficient, the test `f·g < 0` for a
+//! sign change, the exact-zero test on leading coefficients — so the stability suite measures
+//! *his* method. Only the shape changes: no global arrays, coefficients are converted from the
+//! crate's low → high order at the boundary, and every loop has an iteration cap (his
+//! `while (n1 − n2 != 1)` never ends when rounding makes the counts inconsistent).
+//! See `paper-notes/sturm.md` for what each step computes.
+
+use crate::univariate::Poly;
+
+/// Most bisections in [`StamSturm::smallest_root`]'s isolation loop (the original has none).
+const MAX_ISOLATION_STEPS: u32 = 200;
+
+/// Stam's Sturm sequence: member `k` stored highest power first, as in his `STURM_SERIE`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StamSturm {
+    /// `members[k][0]` is the leading coefficient of `V_k`.
+    members: Vec<Vec<f64>>,
+}
+
+impl StamSturm {
+    /// Builds the sequence as `Sturm(deg)` does in `ray2.c`: `V₁ = P'`, then for each `j`
+    /// `V_j = (c₀·V_{j−1} − b₀·(b₀·V_{j−2} − a₀·V_{j−1}·x))/|lead|`, a positive multiple of
+    /// `−rem(V_{j−2}, V_{j−1})` when the degrees drop by one at each step (the normal case).
+    /// A member whose leading coefficient is exactly zero is shifted down, as in his loop.
+    ///
+    /// # Accuracy
+    /// No guarantee: plain `f64`, no scaling of `P`. `None` for the zero polynomial, constants
+    /// or non-finite coefficients.
+    pub fn new(p: &Poly<f64>) -> Option<Self> {
+        if p.degree() == 0 || !p.is_finite() {
+            return None;
+        }
+        let deg = p.degree();
+        let s0: Vec<f64> = p.coeffs().iter().rev().copied().collect();
+        let mut members: Vec<Vec<f64>> = vec![s0];
+        // V1 = P', highest first: (n0 − i)·a[i].
+        let s1: Vec<f64> = (0..deg).map(|i| (deg - i) as f64 * members[0][i]).collect();
+        members.push(s1);
+        let mut n0 = deg;
+        let mut j = 2;
+        while j <= n0 {
+            let (s0, s1) = (&members[members.len() - 2], &members[members.len() - 1]);
+            let at = |v: &Vec<f64>, i: usize| v.get(i).copied().unwrap_or(0.0);
+            let (a0, b0) = (at(s0, 0), at(s1, 0));
+            let c0 = b0 * at(s0, 1) - a0 * at(s1, 1);
+            let len = n0 - j + 1;
+            let mut s2 = vec![0.0; len];
+            let mut x = 1.0;
+            for i in 1..=len {
+                s2[i - 1] = (c0 * at(s1, i) - b0 * (b0 * at(s0, i + 1) - a0 * at(s1, i + 1))) / x;
+                if i == 1 {
+                    x = s2[0].abs();
+                    // The original divides by this even when it is zero, producing NaNs that
+                    // defeat its own zero-leading-coefficient loop below; we skip the scaling.
+                    if x == 0.0 {
+                        x = 1.0;
+                    }
+                }
+            }
+            s2[0] /= x;
+            members.push(s2);
+            // while (S1->a[0] == 0.0): shift the coefficients left and append a zero, keeping
+            // the stored degree (so the member is evaluated as x times the shifted one, as in
+            // the original), and lower the working degree n0.
+            loop {
+                let last = members.last_mut().expect("just pushed");
+                if last.first().is_none_or(|&c| c != 0.0) {
+                    break;
+                }
+                last.rotate_left(1);
+                if let Some(z) = last.last_mut() {
+                    *z = 0.0;
+                }
+                n0 -= 1;
+                if n0 <= j {
+                    // His `return n0`: members V_0 … V_n0 are used.
+                    members.truncate(n0 + 1);
+                    return Some(StamSturm { members });
+                }
+            }
+            j += 1;
+        }
+        Some(StamSturm { members })
+    }
+
+    /// `V(i, x)`: member `i` at `x` by Horner's rule.
+    fn value(&self, i: usize, x: f64) -> f64 {
+        self.members[i].iter().fold(0.0, |v, &c| v * x + c)
+    }
+
+    /// `W(x)`: the number of `k` with `V_k(x)·V_{k+1}(x) < 0`. Unlike eq. 3.21 a zero value is
+    /// not skipped: it breaks the chain, as in the original.
+    pub fn sign_changes_at(&self, x: f64) -> usize {
+        let mut f = self.value(0, x);
+        let mut nb = 0;
+        for i in 1..self.members.len() {
+            let g = self.value(i, x);
+            if f * g < 0.0 {
+                nb += 1;
+            }
+            f = g;
+        }
+        nb
+    }
+
+    /// `W(a) − W(b)`, Stam's root count for `[a, b]` (no guarantee; 0 for `a ≥ b` or NaN).
+    pub fn count_roots(&self, a: f64, b: f64) -> usize {
+        if a.is_nan() || b.is_nan() || a >= b {
+            return 0;
+        }
+        self.sign_changes_at(a)
+            .saturating_sub(self.sign_changes_at(b))
+    }
+
+    /// `IntAlgSurf`'s search: halve `[t1, t2]` (keeping the left half when it holds a root
+    /// by the counts) until the count is one, then bisect on the sign of `P` until the width
+    /// is at most `precision`, and return the right end `t2`, as the original does.
+    ///
+    /// # Accuracy
+    /// None promised (heuristic counts and uncertified signs); `None` when the counts say no
+    /// root, and also when the isolation loop hits its cap.
+    pub fn smallest_root(&self, t1: f64, t2: f64, precision: f64) -> Option<f64> {
+        let (mut t1, mut t2) = (t1, t2);
+        let mut n1 = self.sign_changes_at(t1);
+        let mut n2 = self.sign_changes_at(t2);
+        if n1 <= n2 {
+            return None;
+        }
+        let mut steps = 0;
+        while n1 - n2 != 1 {
+            steps += 1;
+            if steps > MAX_ISOLATION_STEPS {
+                return None;
+            }
+            let m = 0.5 * (t1 + t2);
+            let n = self.sign_changes_at(m);
+            if n1 == n {
+                t1 = m;
+                n1 = n;
+            } else {
+                t2 = m;
+                n2 = n;
+            }
+            if n1 <= n2 {
+                return None;
+            }
+        }
+        let mut guard = 0;
+        while t2 - t1 > precision && guard < 2200 {
+            guard += 1;
+            let m = 0.5 * (t1 + t2);
+            if m <= t1 || m >= t2 {
+                break;
+            }
+            if self.value(0, t1) * self.value(0, m) < 0.0 {
+                t2 = m;
+            } else {
+                t1 = m;
+            }
+        }
+        Some(t2)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stam_counts_and_finds_a_low_degree_root() {
+        let p = Poly::<f64>::from_roots(&[0.3, 1.7, 2.2, 4.1]);
+        let s = StamSturm::new(&p).unwrap();
+        assert_eq!(s.count_roots(0.0, 5.0), 4, "all four roots");
+        assert_eq!(s.count_roots(1.0, 3.0), 2, "1.7 and 2.2");
+        let r = s.smallest_root(1.0, 5.0, 1e-12).unwrap();
+        assert!(
+            (r - 1.7).abs() <= 1e-11,
+            "smallest root after 1 is 1.7: {r}"
+        );
+        assert!(
+            s.smallest_root(5.0, 9.0, 1e-9).is_none(),
+            "no root beyond 4.1"
+        );
+        assert!(StamSturm::new(&Poly::new(vec![3.0])).is_none(), "constant");
+    }
+}

@@ -1,0 +1,117 @@
+//! [`RootStats`]: counters a root solver fills in, mergeable across threads.
+
+use std::ops::AddAssign;
+
+/// Number of per-degree buckets in [`RootStats::by_degree`]; the last bucket collects every
+/// degree at or above `STATS_DEGREES - 1`.
+pub const STATS_DEGREES: usize = 25;
+
+/// What the root solvers did: how many queries, of which degrees, and how often the certified
+/// `f64` path had to fall back to exact rational arithmetic.
+///
+/// Each thread keeps its own `RootStats` and the totals are summed with [`RootStats::merge`].
+///
+/// # Examples
+/// ```
+/// use poly::{Poly, RootOptions, RootStats};
+/// let mut a = RootStats::default();
+/// let mut b = RootStats::default();
+/// let p = Poly::new(vec![-1.0, 0.0, 1.0]); // x² − 1
+/// p.smallest_root_with(0.0, 2.0, &RootOptions::new(1e-9), &mut a);
+/// p.smallest_root_with(-5.0, 2.0, &RootOptions::new(1e-9), &mut b);
+/// a.merge(&b);
+/// assert_eq!(a.queries, 2);
+/// assert_eq!(a.by_degree[2], 2);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct RootStats {
+    /// Root queries answered (including those refused for bad input).
+    pub queries: u64,
+    /// Queries by degree of the stored polynomial (last bucket: that degree and above).
+    pub by_degree: [u64; STATS_DEGREES],
+    /// Queries refused: non-finite coefficients, zero polynomial, NaN bounds or tolerance.
+    pub rejected: u64,
+    /// Queries that returned at least one root.
+    pub with_root: u64,
+    /// Queries answered by a certified closed form (degree 1 or 2).
+    pub closed_form: u64,
+    /// Certified isolation could not decide a sign in `f64` and redid the query with exact
+    /// rational arithmetic. This is the statistic the renderer reports.
+    pub exact_fallbacks: u64,
+    /// Refinement reached the `f64` noise floor above the tolerance and finished the bracket
+    /// with exact rational signs.
+    pub refine_fallbacks: u64,
+    /// Interval subdivisions (de Casteljau splits or Sturm bisections) during isolation.
+    pub subdivisions: u64,
+    /// Polynomial evaluations during refinement.
+    pub refine_evals: u64,
+}
+
+impl RootStats {
+    /// Adds every counter of `other` into `self`.
+    pub fn merge(&mut self, other: &RootStats) {
+        self.queries += other.queries;
+        for (a, b) in self.by_degree.iter_mut().zip(other.by_degree.iter()) {
+            *a += b;
+        }
+        self.rejected += other.rejected;
+        self.with_root += other.with_root;
+        self.closed_form += other.closed_form;
+        self.exact_fallbacks += other.exact_fallbacks;
+        self.refine_fallbacks += other.refine_fallbacks;
+        self.subdivisions += other.subdivisions;
+        self.refine_evals += other.refine_evals;
+    }
+
+    /// Fraction of queries that fell back to exact isolation (0 when there were no queries).
+    pub fn fallback_rate(&self) -> f64 {
+        if self.queries == 0 {
+            0.0
+        } else {
+            self.exact_fallbacks as f64 / self.queries as f64
+        }
+    }
+
+    /// Records one query of a polynomial of degree `degree`.
+    pub(crate) fn count_query(&mut self, degree: usize) {
+        self.queries += 1;
+        self.by_degree[degree.min(STATS_DEGREES - 1)] += 1;
+    }
+}
+
+impl AddAssign<&RootStats> for RootStats {
+    fn add_assign(&mut self, rhs: &RootStats) {
+        self.merge(rhs);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn merge_adds_every_counter() {
+        let mut a = RootStats::default();
+        a.count_query(4);
+        a.count_query(40);
+        a.exact_fallbacks = 1;
+        let mut b = a.clone();
+        b.subdivisions = 7;
+        b.refine_evals = 3;
+        b.merge(&a);
+        assert_eq!(b.queries, 4, "2 + 2 queries");
+        assert_eq!(b.by_degree[4], 2, "degree 4 twice");
+        assert_eq!(
+            b.by_degree[STATS_DEGREES - 1],
+            2,
+            "degree 40 lands in the last bucket"
+        );
+        assert_eq!(b.exact_fallbacks, 2, "fallbacks summed");
+        assert_eq!(b.subdivisions, 7, "only b had subdivisions");
+        assert_eq!(b.fallback_rate(), 0.5, "2 of 4");
+        let mut c = RootStats::default();
+        c += &b;
+        assert_eq!(c, b, "+= is merge");
+    }
+}

@@ -1,0 +1,365 @@
+//! [`SturmSequence`]: counting distinct real roots in an interval (seed §3.5.1, eq. 3.16–3.22).
+//!
+//! The sequence starts `V₀ = P`, `V₁ = P'` (eq. 3.18–3.19) and continues with negated
+//! remainders, `V_{k−2} = Q_{k−1}·V_{k−1} − V_k` (eq. 3.20), until a remainder vanishes. With
+//! `σ(x)` the number of sign changes in `V₀(x), …, V_q(x)`, zeros omitted (eq. 3.21),
+//! `σ(a) − σ(b)` is the number of distinct real roots in `(a, b]` (eq. 3.22, with the endpoint
+//! convention made precise below). See `paper-notes/sturm.md`.
+//!
+//! Two changes from the seed, both explained in the notes:
+//! * Over [`Rat`] every member is multiplied by a *positive* constant to get coprime integer
+//!   coefficients (a primitive remainder sequence). Positive factors never change a sign, so
+//!   the counts are those of eq. 3.22, while coefficient growth stays polynomial.
+//! * When `P` has multiple roots the last member `g = gcd(P, P')` is not constant, and every
+//!   member is divided by it. The quotient sequence is a Sturm sequence of the square-free part
+//!   `P/g`, so counts are of *distinct* roots and stay right at the multiple roots themselves
+//!   (where the undivided sequence vanishes entirely).
+
+use num_traits::{Signed, Zero};
+
+use crate::int_poly::IntPoly;
+use crate::root_error::RootError;
+use crate::scalar::{Rat, Scalar};
+use crate::univariate::{Poly, QPoly};
+
+/// A Sturm sequence `V₀, V₁, …, V_q` (seed eq. 3.17): `σ(a) − σ(b)` counts distinct real roots.
+///
+/// Built by [`Poly::<Rat>::sturm`](Poly::sturm) (exact, certified) or
+/// [`Poly::<f64>::sturm`](Poly::sturm) (normalised floating point, heuristic).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SturmSequence<T> {
+    polys: Vec<Poly<T>>,
+    multiple_roots: bool,
+}
+
+impl<T> SturmSequence<T> {
+    /// The members `V₀, …, V_q`, lowest degree first each. `V₀` is the square-free part of the
+    /// polynomial up to a positive factor (exact) or the normalised polynomial (`f64`).
+    pub fn polys(&self) -> &[Poly<T>] {
+        &self.polys
+    }
+
+    /// True when the polynomial had a repeated root (its gcd with the derivative was not
+    /// constant). Exact for [`Rat`]; for `f64` it means the remainder sequence ended early.
+    pub fn had_multiple_roots(&self) -> bool {
+        self.multiple_roots
+    }
+}
+
+impl QPoly {
+    /// The exact Sturm sequence of the square-free part (seed eq. 3.17–3.20).
+    ///
+    /// # Exactness
+    /// Exact: members are integer polynomials (positive multiples of the seed's `V_k`, divided
+    /// by `gcd(P, P')` when `P` has repeated roots), so [`SturmSequence::count_roots`] is a
+    /// certified count of distinct real roots.
+    ///
+    /// # Errors
+    /// [`RootError::ZeroPolynomial`] for the zero polynomial (every number is a root).
+    ///
+    /// # Complexity
+    /// `O(n)` pseudo-divisions of integer polynomials; coefficient sizes grow polynomially with
+    /// the degree (primitive remainder sequence).
+    ///
+    /// # Examples
+    /// ```
+    /// use poly::{QPoly, Rat};
+    /// let q = |n: i64| Rat::from_integer(n.into());
+    /// // (x − 1)²(x − 2)(x − 3): distinct roots 1, 2, 3.
+    /// let p = QPoly::from_roots(&[q(1), q(1), q(2), q(3)]);
+    /// let s = p.sturm()?;
+    /// assert_eq!(s.count_roots(&q(0), &q(3)), 3); // (0, 3] includes the root 3
+    /// assert_eq!(s.count_roots(&q(1), &q(2)), 1); // (1, 2] excludes the root 1
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn sturm(&self) -> Result<SturmSequence<Rat>, RootError> {
+        if self.is_zero() {
+            return Err(RootError::ZeroPolynomial);
+        }
+        let p = IntPoly::from_qpoly(self);
+        let mut seq = vec![p.clone()];
+        if p.degree() > 0 {
+            seq.push(p.derivative());
+            loop {
+                let n = seq.len();
+                let r = seq[n - 2].neg_rem(&seq[n - 1]);
+                if r.is_zero() {
+                    break;
+                }
+                seq.push(r);
+            }
+        }
+        let g = seq.last().expect("sequence starts with p").clone();
+        let multiple_roots = g.degree() > 0;
+        if multiple_roots {
+            // Divide by gcd(P, P') (eq. 3.20 stops at it): the sequence of P/g.
+            seq = seq.iter().map(|v| v.div_exact(&g)).collect();
+        }
+        Ok(SturmSequence {
+            polys: seq.iter().map(IntPoly::to_qpoly).collect(),
+            multiple_roots,
+        })
+    }
+}
+
+impl SturmSequence<Rat> {
+    /// `σ(x)`: sign changes in `V₀(x), …, V_q(x)`, zeros omitted (seed eq. 3.21).
+    pub fn sign_changes_at(&self, x: &Rat) -> usize {
+        count_changes(self.polys.iter().map(|v| int_sign_at(v, x)))
+    }
+
+    /// Sign changes at `−∞` (`to_plus = false`) or `+∞`.
+    pub fn sign_changes_at_infinity(&self, to_plus: bool) -> usize {
+        count_changes(self.polys.iter().map(|v| sign_at_infinity(v, to_plus)))
+    }
+
+    /// The number of distinct real roots in the half-open interval `(a, b]`.
+    ///
+    /// # Exactness
+    /// Exact and certified, including when `a` or `b` is itself a root (a root at `a` is not
+    /// counted, a root at `b` is) and at multiple roots (each distinct root counts once).
+    /// An empty or reversed interval (`a ≥ b`) holds no roots and gives 0.
+    ///
+    /// # Complexity
+    /// Two evaluations of every member at a rational point, in integer arithmetic.
+    pub fn count_roots(&self, a: &Rat, b: &Rat) -> usize {
+        if a >= b {
+            return 0;
+        }
+        self.sign_changes_at(a)
+            .saturating_sub(self.sign_changes_at(b))
+    }
+
+    /// The number of distinct real roots on the whole real line.
+    pub fn count_real_roots(&self) -> usize {
+        self.sign_changes_at_infinity(false)
+            .saturating_sub(self.sign_changes_at_infinity(true))
+    }
+
+    /// The exact sign (−1, 0 or 1) of the square-free part `V₀` at `x`; it vanishes exactly at
+    /// the distinct roots of the polynomial and changes sign across each of them.
+    pub fn sign_of_square_free_at(&self, x: &Rat) -> i8 {
+        int_sign_at(&self.polys[0], x)
+    }
+}
+
+impl Poly<f64> {
+    /// A Sturm sequence in floating point, normalised for stability: every member is divided
+    /// by its largest coefficient magnitude (a positive factor, so signs are unchanged) and
+    /// remainder coefficients negligible relative to the dividend are dropped (see
+    /// [`Scalar::is_negligible`]).
+    ///
+    /// # Accuracy
+    /// A heuristic. Each remainder is rounded, so [`SturmSequence::count_roots`] can be wrong
+    /// when roots are clustered or the degree is high (the seed reports instability above
+    /// degree 8 for an unnormalised version). For certified counts use
+    /// `self.to_rat()` and [`Poly::<Rat>::sturm`](Poly::sturm); the root finders
+    /// ([`Poly::smallest_root`]) are certified without it.
+    ///
+    /// # Errors
+    /// [`RootError::NonFiniteCoefficient`] and [`RootError::ZeroPolynomial`].
+    pub fn sturm(&self) -> Result<SturmSequence<f64>, RootError> {
+        check_finite(self)?;
+        if self.is_zero() {
+            return Err(RootError::ZeroPolynomial);
+        }
+        let p = normalise(self.clone());
+        let mut seq = vec![p.clone()];
+        if p.degree() > 0 {
+            seq.push(normalise(p.derivative()));
+            while seq.last().is_some_and(|v| v.degree() > 0) {
+                let n = seq.len();
+                let (_, r) = seq[n - 2].div_rem(&seq[n - 1]).expect("member is non-zero");
+                if r.is_zero() {
+                    break;
+                }
+                seq.push(normalise(-r));
+            }
+        }
+        let multiple_roots = seq.last().is_some_and(|g| g.degree() > 0);
+        Ok(SturmSequence {
+            polys: seq,
+            multiple_roots,
+        })
+    }
+}
+
+impl SturmSequence<f64> {
+    /// `σ(x)` in floating point (zeros omitted); `x` may be ±∞.
+    pub fn sign_changes_at(&self, x: f64) -> usize {
+        if x.is_infinite() {
+            return count_changes(self.polys.iter().map(|v| f64_sign_at_infinity(v, x > 0.0)));
+        }
+        count_changes(self.polys.iter().map(|v| {
+            let y = v.eval(&x);
+            if y > 0.0 {
+                1
+            } else if y < 0.0 {
+                -1
+            } else {
+                0
+            }
+        }))
+    }
+
+    /// The number of distinct real roots in `(a, b]`, evaluated in floating point; `a` and `b`
+    /// may be infinite.
+    ///
+    /// # Accuracy
+    /// Heuristic (see [`Poly::<f64>::sturm`](Poly::sturm)): exact arithmetic on the same
+    /// sequence would give the true count, rounding in the sequence and in the evaluations can
+    /// change it. An empty or reversed interval gives 0; a NaN bound gives 0.
+    pub fn count_roots(&self, a: f64, b: f64) -> usize {
+        if a.is_nan() || b.is_nan() || a >= b {
+            return 0;
+        }
+        self.sign_changes_at(a)
+            .saturating_sub(self.sign_changes_at(b))
+    }
+}
+
+/// Divides by the largest coefficient magnitude (a positive number).
+fn normalise(p: Poly<f64>) -> Poly<f64> {
+    let m = p.max_abs_coeff();
+    if m == 0.0 || !m.is_finite() {
+        return p;
+    }
+    p.scale(&(1.0 / m)).trim_negligible()
+}
+
+pub(crate) fn check_finite(p: &Poly<f64>) -> Result<(), RootError> {
+    match p.coeffs().iter().position(|c| !c.is_finite()) {
+        Some(index) => Err(RootError::NonFiniteCoefficient { index }),
+        None => Ok(()),
+    }
+}
+
+/// Sign changes in a sequence of signs, zeros omitted (eq. 3.21).
+fn count_changes(signs: impl Iterator<Item = i8>) -> usize {
+    let mut last = 0i8;
+    let mut count = 0;
+    for s in signs {
+        if s == 0 {
+            continue;
+        }
+        if last != 0 && s != last {
+            count += 1;
+        }
+        last = s;
+    }
+    count
+}
+
+/// Exact sign of an integer-coefficient `QPoly` at `x` (homogeneous Horner in integers: with
+/// `x = n/d`, `d > 0`, the sign of `Σ cᵢ nⁱ d^(deg−i)`).
+fn int_sign_at(p: &QPoly, x: &Rat) -> i8 {
+    let Some(top) = p.coeffs().last() else {
+        return 0;
+    };
+    debug_assert!(
+        p.coeffs().iter().all(|c| c.is_integer()),
+        "Sturm members are integral"
+    );
+    let (n, d) = (x.numer(), x.denom());
+    let mut acc = top.numer().clone();
+    let mut dpow = num_bigint::BigInt::from(1);
+    for c in p.coeffs().iter().rev().skip(1) {
+        dpow *= d;
+        acc = acc * n + c.numer() * &dpow;
+    }
+    if acc.is_zero() {
+        0
+    } else if acc.is_positive() {
+        1
+    } else {
+        -1
+    }
+}
+
+fn sign_at_infinity<T: Scalar>(p: &Poly<T>, to_plus: bool) -> i8 {
+    let Some(lc) = p.leading_coeff() else {
+        return 0;
+    };
+    let s = if lc.is_zero() {
+        0
+    } else if lc.is_positive() {
+        1
+    } else {
+        -1
+    };
+    if !to_plus && p.degree() % 2 == 1 {
+        -s
+    } else {
+        s
+    }
+}
+
+fn f64_sign_at_infinity(p: &Poly<f64>, to_plus: bool) -> i8 {
+    sign_at_infinity(p, to_plus)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn q(n: i64) -> Rat {
+        Rat::from_integer(n.into())
+    }
+    fn qq(n: i64, d: i64) -> Rat {
+        Rat::new(n.into(), d.into())
+    }
+
+    #[test]
+    fn exact_counts_with_endpoint_and_multiple_roots() {
+        // (x + 2)³ (x − 1/2) (x − 3)²
+        let p = QPoly::from_roots(&[q(-2), q(-2), q(-2), qq(1, 2), q(3), q(3)]);
+        let s = p.sturm().unwrap();
+        assert!(s.had_multiple_roots(), "gcd is (x+2)²(x−3)");
+        assert_eq!(s.count_real_roots(), 3, "three distinct roots");
+        assert_eq!(s.count_roots(&q(-10), &q(10)), 3, "all");
+        assert_eq!(s.count_roots(&q(-2), &q(3)), 2, "(−2, 3]: 1/2 and 3");
+        assert_eq!(
+            s.count_roots(&q(-3), &q(-2)),
+            1,
+            "(−3, −2]: the triple root"
+        );
+        assert_eq!(s.count_roots(&qq(1, 2), &qq(1, 2)), 0, "empty interval");
+        assert_eq!(s.count_roots(&q(3), &q(-3)), 0, "reversed interval");
+        assert_eq!(s.count_roots(&qq(1, 2), &q(3)), 1, "(1/2, 3]");
+        assert_eq!(
+            s.sign_of_square_free_at(&q(3)),
+            0,
+            "square-free part vanishes at 3"
+        );
+    }
+
+    #[test]
+    fn constants_have_no_roots_and_zero_is_refused() {
+        let s = QPoly::constant(q(-4)).sturm().unwrap();
+        assert_eq!(s.count_roots(&q(-1), &q(1)), 0, "constant");
+        assert_eq!(
+            QPoly::zero().sturm(),
+            Err(RootError::ZeroPolynomial),
+            "zero polynomial"
+        );
+        assert_eq!(
+            Poly::new(vec![f64::NAN, 1.0]).sturm(),
+            Err(RootError::NonFiniteCoefficient { index: 0 }),
+            "NaN coefficient"
+        );
+    }
+
+    #[test]
+    fn f64_sequence_counts_well_separated_roots() {
+        let p = Poly::<f64>::from_roots(&[-3.0, -0.5, 0.25, 2.0, 7.0]);
+        let s = p.sturm().unwrap();
+        assert_eq!(
+            s.count_roots(f64::NEG_INFINITY, f64::INFINITY),
+            5,
+            "all five"
+        );
+        assert_eq!(s.count_roots(-1.0, 2.5), 3, "(−1, 2.5]: −0.5, 0.25 and 2");
+        assert_eq!(s.count_roots(0.0, 1.0), 1, "0.25");
+        assert_eq!(s.count_roots(1.0, f64::NAN), 0, "NaN bound");
+    }
+}

@@ -1,0 +1,106 @@
+//! Test polynomials with known roots, shared by the unit tests, the integration tests and the
+//! stability suite: planted rational roots, Wilkinson's polynomial, Chebyshev polynomials.
+//!
+//! Everything here is exact: the polynomials are built over [`Rat`], and the `f64` versions
+//! are the coefficient-wise nearest doubles (so their roots differ slightly from the planted
+//! ones — compare `f64` results with the exact roots of the *stored* polynomial, via
+//! [`Poly::to_rat`], or allow for the conditioning).
+
+use num_bigint::BigInt;
+
+use crate::scalar::Rat;
+use crate::univariate::{Poly, QPoly};
+
+/// `n/d` as a rational. Panics if `d == 0` (a caller bug).
+pub fn rat(n: i64, d: i64) -> Rat {
+    Rat::new(BigInt::from(n), BigInt::from(d))
+}
+
+/// `∏ (x − rᵢ)` over the rationals: roots exactly `rᵢ`, multiplicities from repetition.
+pub fn planted(roots: &[Rat]) -> QPoly {
+    QPoly::from_roots(roots)
+}
+
+/// Wilkinson's polynomial `∏_{k=1}^{n} (x − k)` (n = 20 is the classic ill-conditioned case:
+/// its coefficients reach 20! ≈ 2.4e18, beyond exact `f64` integers).
+pub fn wilkinson(n: u32) -> QPoly {
+    let roots: Vec<Rat> = (1..=i64::from(n)).map(|k| rat(k, 1)).collect();
+    QPoly::from_roots(&roots)
+}
+
+/// The Chebyshev polynomial of the first kind `T_n` (`T₀ = 1`, `T₁ = x`,
+/// `T_{k+1} = 2x·T_k − T_{k−1}`): `n` simple roots `cos((2k − 1)π / 2n)` in `(−1, 1)`.
+pub fn chebyshev(n: u32) -> QPoly {
+    let two_x = QPoly::new(vec![rat(0, 1), rat(2, 1)]);
+    let (mut prev, mut cur) = (
+        QPoly::constant(rat(1, 1)),
+        QPoly::new(vec![rat(0, 1), rat(1, 1)]),
+    );
+    if n == 0 {
+        return prev;
+    }
+    for _ in 1..n {
+        let next = &(&two_x * &cur) - &prev;
+        prev = cur;
+        cur = next;
+    }
+    cur
+}
+
+/// The roots of [`chebyshev`]`(n)` in increasing order, as `f64`.
+pub fn chebyshev_roots(n: u32) -> Vec<f64> {
+    let mut r: Vec<f64> = (1..=n)
+        .map(|k| ((2 * k - 1) as f64 * std::f64::consts::PI / (2 * n) as f64).cos())
+        .collect();
+    r.sort_by(f64::total_cmp);
+    r
+}
+
+/// The distinct values of `roots`, sorted.
+pub fn distinct_sorted(roots: &[Rat]) -> Vec<Rat> {
+    let mut r = roots.to_vec();
+    r.sort();
+    r.dedup();
+    r
+}
+
+/// The number of distinct values of `roots` in the half-open interval `(a, b]` — the oracle
+/// for Sturm counts on planted polynomials.
+pub fn planted_count(roots: &[Rat], a: &Rat, b: &Rat) -> usize {
+    distinct_sorted(roots)
+        .iter()
+        .filter(|r| *r > a && *r <= b)
+        .count()
+}
+
+/// `∏ (x − rᵢ)` in `f64` from `f64` roots (rounded at every step; its exact roots are those
+/// of the stored coefficients, near but not equal to `rᵢ`).
+pub fn planted_f64(roots: &[f64]) -> Poly<f64> {
+    Poly::from_roots(roots)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn constructors_have_the_planted_roots() {
+        let w = wilkinson(20);
+        assert_eq!(w.degree(), 20, "degree 20");
+        assert_eq!(w.eval(&rat(7, 1)), rat(0, 1), "7 is a root");
+        assert_eq!(w.coeff(19), rat(-210, 1), "−(1 + … + 20)");
+        let t4 = chebyshev(4);
+        assert_eq!(
+            t4,
+            QPoly::new(vec![rat(1, 1), rat(0, 1), rat(-8, 1), rat(0, 1), rat(8, 1)]),
+            "T4 = 8x⁴ − 8x² + 1"
+        );
+        let roots = [rat(1, 2), rat(-3, 1), rat(1, 2)];
+        assert_eq!(
+            planted_count(&roots, &rat(-3, 1), &rat(1, 2)),
+            1,
+            "(−3, 1/2] holds 1/2 once"
+        );
+        assert_eq!(chebyshev_roots(3).len(), 3, "three roots");
+    }
+}
