@@ -1,2 +1,10 @@
 //! Integration tests across `poly`, `groebner` and `render`: one test binary, one `mod` per
 //! topic, to keep link time down (STYLE.md §7).
+
+// Tracer: sphere coverage vs projected disc, torus depth vs exact rational root, no re-hit of
+// spawned rays, TORUS vs the equivalent ALGEBRAIC_SURFACE.
+mod render_analytic;
+// Tracer: golden 64×64 images of every scene (TOOLKIT_BLESS=1 re-blesses).
+mod render_golden;
+// The library entry point behind the CLI: atomic output, PFM depth, option overrides.
+mod render_job;

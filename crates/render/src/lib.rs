@@ -43,6 +43,9 @@ pub mod surface;
 pub mod whitted;
 mod workspace;
 
+/// The vector types of the public API (`DVec3` points, `Rgb` colours).
+pub use glam;
+
 pub use crate::camera::Camera;
 pub use crate::job::{RenderError, RenderReport, render_scene};
 pub use crate::material::{surface_color, texture_color};
@@ -50,7 +53,7 @@ pub use crate::options::RenderOptions;
 pub use crate::output::{
     Gamma, OutputError, PngOptions, read_pfm, write_atomically, write_pfm, write_png,
 };
-pub use crate::poly3::{Poly3, RestrictScratch, Term3};
+pub use crate::poly3::{Eval3, Poly3, RestrictScratch, Term3};
 pub use crate::prepared::{PreparedScene, Primitive};
 pub use crate::renderer::{Film, RenderOutput, RenderSettings, render};
 pub use crate::scene::Scene;

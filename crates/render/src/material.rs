@@ -2,14 +2,14 @@
 
 use glam::DVec2;
 
-use crate::scene::{Illumination, Material, Rgb, Texture};
+use crate::scene::{Material, Rgb, Texture};
 
-/// The surface colour `C_s` at surface parameters `uv` (Stam eq. 2.7–2.8): the texture's
-/// colour for [`Illumination::Texture`] where the shape defines `uv`, else `material.cs`.
+/// The surface colour `C_s` at surface parameters `uv` (Stam eq. 2.7–2.8): the colour of the
+/// material's texture where it has one and the shape defines `uv`, else `material.cs`.
+///
+/// Stam textures only `TEXTURE` objects; here any illumination level may carry a texture (a
+/// checkered mirror floor), and `TEXTURE` without one is refused by validation.
 pub fn surface_color(material: &Material, textures: &[Texture], uv: Option<DVec2>) -> Rgb {
-    if material.illumination != Illumination::Texture {
-        return material.cs;
-    }
     match (material.texture.and_then(|i| textures.get(i)), uv) {
         (Some(tex), Some(uv)) => texture_color(tex, uv),
         _ => material.cs,

@@ -26,6 +26,16 @@ use crate::workspace::Workspace;
 /// `Attenuation = ON`.
 pub const ATTENUATION_DISTANCE: f64 = 5.0;
 
+/// `x^n` for the specular exponent: an integer `n` (Stam's `n` is "l'entier naturel n",
+/// eq. 2.9) takes `powi`, several times cheaper than `powf`.
+fn specular_power(x: f64, n: f64) -> f64 {
+    if n.fract() == 0.0 && n.abs() <= 1024.0 {
+        x.powi(n as i32)
+    } else {
+        x.powf(n)
+    }
+}
+
 /// The ray parameter range of a new ray: open at 0. Self-intersection is prevented by moving
 /// the origin off the surface by the hit point's error bound
 /// ([`offset_ray_origin`]), not by a fixed epsilon.
@@ -169,7 +179,7 @@ fn shade(
                 let h = (l - v).normalize();
                 let cos_h = n.dot(h);
                 if cos_h > 0.0 {
-                    color += m.cr * light.color * (m.ks * cos_h.powf(m.n) * atten);
+                    color += m.cr * light.color * (m.ks * specular_power(cos_h, m.n) * atten);
                 }
             }
         }

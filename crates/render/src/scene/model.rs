@@ -438,7 +438,8 @@ pub struct Material {
     pub n: f64,
     /// Relative refractive index `k_n = n₂/n₁` of the object's inside (eq. 2.16) (`Kn`).
     pub kn: f64,
-    /// Index into [`Scene::textures`] for [`Illumination::Texture`].
+    /// Index into [`Scene::textures`]: the texture replaces `C_s` wherever the shape defines
+    /// surface parameters (required by [`Illumination::Texture`], allowed with any level).
     pub texture: Option<usize>,
 }
 

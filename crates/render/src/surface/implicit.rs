@@ -43,37 +43,37 @@ pub trait ImplicitFn: Send + Sync + std::fmt::Debug {
     /// A box holding the surface, `None` if unbounded.
     fn bounds(&self) -> Option<Bounds3>;
 
+    /// A sphere `(centre, radius)` holding the surface, tested before the box when the shape
+    /// is rounder than its box (torus): rays passing the box corners are rejected without
+    /// building a polynomial.
+    fn bounding_sphere(&self) -> Option<(DVec3, f64)> {
+        None
+    }
+
     /// Surface parameters at `p`, where the shape defines them.
     fn uv(&self, _p: DVec3) -> Option<DVec2> {
         None
     }
 }
 
-/// An implicit surface ready for tracing: `F`, its gradient polynomials, and its bounds.
+/// An implicit surface ready for tracing: `F` and its bounds.
 #[derive(Debug)]
 pub struct Implicit<F> {
     f: F,
-    grad: [Poly3; 3],
     degree: u32,
     bounds: Option<Bounds3>,
 }
 
 impl<F: ImplicitFn> Implicit<F> {
-    /// Wraps `f`, precomputing `∇F`; `user_bounds` (a scene `Bounding volume`) tightens the
+    /// Wraps `f`; `user_bounds` (a scene `Bounding volume`) tightens the
     /// shape's own bounds, or is the only bound of an unbounded shape.
     pub fn new(f: F, user_bounds: Option<Bounds3>) -> Self {
-        let grad = f.poly().gradient_polys();
         let degree = f.poly().degree();
         let bounds = match (f.bounds(), user_bounds) {
             (Some(a), Some(b)) => Some(a.intersection(&b)),
             (a, b) => a.or(b),
         };
-        Implicit {
-            f,
-            grad,
-            degree,
-            bounds,
-        }
+        Implicit { f, degree, bounds }
     }
 
     /// The wrapped function.
@@ -99,6 +99,14 @@ pub(crate) fn smallest_root_in(ws: &mut Workspace, lo: f64, hi: f64, x_tol: f64)
     let root = p.smallest_root_with(lo, hi, &RootOptions::new(x_tol), &mut ws.stats.roots);
     ws.coeffs = p.into_coeffs();
     root
+}
+
+/// True when the line of `ray` stays farther than `r` from `c` (with a relative margin of
+/// `1e-9` on `r²` against rounding: a near-tangent line is never rejected).
+fn misses_sphere(ray: &Ray, c: DVec3, r: f64) -> bool {
+    let oc = ray.origin - c;
+    let cross = oc.cross(ray.dir).length_squared();
+    cross > r * r * ray.dir.length_squared() * (1.0 + 1e-9)
 }
 
 /// Clips `t_range` to `bounds` (counting a rejection for `kind`), or passes it through for an
@@ -131,6 +139,12 @@ impl<F: ImplicitFn> Implicit<F> {
         ws: &mut Workspace,
         any_root: bool,
     ) -> Option<(f64, DVec3)> {
+        if let Some((c, r)) = self.f.bounding_sphere()
+            && misses_sphere(ray, c, r)
+        {
+            ws.stats.per_kind[self.f.kind().index()].bbox_rejects += 1;
+            return None;
+        }
         let seg = clip(self.bounds.as_ref(), ray, t_range, ws, self.f.kind())?;
         // Move the origin to where the ray enters the box (or to the range start): the
         // restricted polynomial is then built from small numbers near the surface, which is
@@ -176,14 +190,13 @@ impl<F: ImplicitFn> Surface for Implicit<F> {
 
     fn shading(&self, hit: &Hit) -> SurfaceGeometry {
         let p = hit.local;
-        let (normal, p_err) = gradient_normal(self.f.poly(), &self.grad, self.degree, p)
-            .unwrap_or_else(|| {
-                let size = self
-                    .bounds
-                    .map_or(0.0, |b| b.diagonal())
-                    .max(p.abs().max_element());
-                (None, DVec3::splat(SINGULAR_P_ERR_REL * size))
-            });
+        let (normal, p_err) = gradient_normal(self.f.poly(), self.degree, p).unwrap_or_else(|| {
+            let size = self
+                .bounds
+                .map_or(0.0, |b| b.diagonal())
+                .max(p.abs().max_element());
+            (None, DVec3::splat(SINGULAR_P_ERR_REL * size))
+        });
         SurfaceGeometry {
             p,
             p_err,
@@ -203,24 +216,16 @@ impl<F: ImplicitFn> Surface for Implicit<F> {
 /// stored point, so it covers the root tolerance, the rounding of the restricted coefficients
 /// and of `p = o + s·d` together. It is a first-order bound: valid where `F` is close to
 /// linear over that distance, which holds away from singular points.
-pub(crate) fn gradient_normal(
-    f: &Poly3,
-    grad: &[Poly3; 3],
-    degree: u32,
-    p: DVec3,
-) -> Option<(Option<DVec3>, DVec3)> {
-    let g = DVec3::new(grad[0].eval(p), grad[1].eval(p), grad[2].eval(p));
-    let g_err = DVec3::new(
-        grad[0].eval_abs(p),
-        grad[1].eval_abs(p),
-        grad[2].eval_abs(p),
-    ) * gamma(degree as usize + 2);
+pub(crate) fn gradient_normal(f: &Poly3, degree: u32, p: DVec3) -> Option<(Option<DVec3>, DVec3)> {
+    let e = f.eval_grad(p);
+    let g = e.grad;
+    let g_err = e.grad_abs * gamma(degree as usize + 2);
     let glen = g.length();
     // `glen <= g_err` also refuses NaN through `!is_finite`.
     if glen <= g_err.length() || !glen.is_finite() {
         return None;
     }
-    let f_err = gamma(degree as usize + 3) * f.eval_abs(p);
-    let dist = (f.eval(p).abs() + f_err) / glen;
+    let f_err = gamma(degree as usize + 3) * e.f_abs;
+    let dist = (e.f.abs() + f_err) / glen;
     Some((Some(g / glen), DVec3::splat(dist)))
 }

@@ -87,6 +87,10 @@ impl ImplicitFn for Torus {
         ]);
     }
 
+    fn bounding_sphere(&self) -> Option<(DVec3, f64)> {
+        Some((DVec3::ZERO, self.major + self.minor))
+    }
+
     fn bounds(&self) -> Option<Bounds3> {
         let e = self.major + self.minor;
         Some(Bounds3::new(
