@@ -18,15 +18,70 @@
 //! on the exact sub-interval. When a needed sign cannot be certified the isolator reports
 //! failure and the caller switches to exact rational arithmetic.
 
-use smallvec::{SmallVec, smallvec};
+use smallvec::SmallVec;
 
+use crate::eval_bound::{ETA, certified_value, gamma_ratio_upper};
 use crate::stats::RootStats;
-use crate::univariate::gamma;
 
-/// Coefficients stay on the stack up to degree 24 (the renderer's sextics and Bézier-patch
-/// polynomials of degree 18 included).
-const INLINE: usize = 25;
-type Coeffs = SmallVec<[f64; INLINE]>;
+/// Storage for one node's coefficients: a fixed array (no heap allocation; only the first
+/// `n + 1` entries are used) for the degrees a renderer meets, a `Vec` above.
+pub(crate) trait Coeffs: Clone + std::fmt::Debug {
+    /// `Some(n + 1)` when the storage length *is* the number of coefficients, so loops over
+    /// them have compile-time bounds (unrolled, no bounds checks).
+    const EXACT_LEN: Option<usize>;
+    fn zeroed(len: usize) -> Self;
+    fn at(&self) -> &[f64];
+    fn at_mut(&mut self) -> &mut [f64];
+}
+
+impl<const N: usize> Coeffs for [f64; N] {
+    const EXACT_LEN: Option<usize> = Some(N);
+    #[inline]
+    fn zeroed(_len: usize) -> Self {
+        [0.0; N]
+    }
+    #[inline]
+    fn at(&self) -> &[f64] {
+        self
+    }
+    #[inline]
+    fn at_mut(&mut self) -> &mut [f64] {
+        self
+    }
+}
+
+/// A fixed array with room for up to `N` coefficients (degrees without an exact-size array).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Cap<const N: usize>([f64; N]);
+
+impl<const N: usize> Coeffs for Cap<N> {
+    const EXACT_LEN: Option<usize> = None;
+    #[inline]
+    fn zeroed(_len: usize) -> Self {
+        Cap([0.0; N])
+    }
+    #[inline]
+    fn at(&self) -> &[f64] {
+        &self.0
+    }
+    #[inline]
+    fn at_mut(&mut self) -> &mut [f64] {
+        &mut self.0
+    }
+}
+
+impl Coeffs for Vec<f64> {
+    const EXACT_LEN: Option<usize> = None;
+    fn zeroed(len: usize) -> Self {
+        vec![0.0; len]
+    }
+    fn at(&self) -> &[f64] {
+        self
+    }
+    fn at_mut(&mut self) -> &mut [f64] {
+        self
+    }
+}
 
 /// Deepest subdivision tried before giving up on `f64`: intervals of relative width 2^-52
 /// are a single rounding step of the map `a + w·u`, so no sign below that can be certified.
@@ -36,20 +91,19 @@ const MAX_DEPTH: u32 = 52;
 /// clustered roots is cheaper to isolate exactly than to subdivide for ever).
 const MAX_SPLITS: u32 = 4000;
 
-/// 2^-1074, the smallest subnormal: the largest absolute error of one rounding that
-/// underflows.
-const ETA: f64 = f64::from_bits(1);
-
 /// A sub-interval `[u0, u1]` of `[0, 1]` with the Bernstein coefficients of `q` on it.
 #[derive(Clone, Debug)]
-struct Node {
+struct Node<S> {
     /// Computed Bernstein coefficients.
-    v: Coeffs,
+    v: S,
     /// The same computation on absolute values (the error-bound weights).
-    m: Coeffs,
+    m: S,
     u0: f64,
     u1: f64,
+    /// Number of cuts (subdivisions or clips) from the top node.
     depth: u32,
+    /// Rounding steps along any path from the stored coefficients to these.
+    ops: u32,
 }
 
 /// A bracket `(lo, hi)` holding exactly one distinct real root, of odd multiplicity, with
@@ -59,6 +113,23 @@ pub(crate) struct Bracket {
     pub(crate) lo: f64,
     pub(crate) hi: f64,
     pub(crate) s_lo: i8,
+    /// `p(lo)` and `p(hi)` as computed when their signs were certified (NaN: not computed);
+    /// the secant-based refinements start from them instead of evaluating again.
+    pub(crate) f_lo: f64,
+    pub(crate) f_hi: f64,
+}
+
+impl Bracket {
+    /// A bracket whose end values are not known yet.
+    pub(crate) fn new(lo: f64, hi: f64, s_lo: i8) -> Self {
+        Bracket {
+            lo,
+            hi,
+            s_lo,
+            f_lo: f64::NAN,
+            f_hi: f64::NAN,
+        }
+    }
 }
 
 /// The outcome of a certified search.
@@ -75,30 +146,31 @@ pub(crate) enum Search {
 
 /// Certified Bernstein-basis isolation of the roots of one `f64` polynomial in `(t_min, t_max]`.
 #[derive(Debug)]
-pub(crate) struct BernsteinIsolator<'p> {
+pub(crate) struct BernsteinIsolator<'p, S> {
     p: &'p [f64],
     n: usize,
     a: f64,
     w: f64,
     w_exact: bool,
     t_max: f64,
+    /// Nodes with `u0 > u_beyond` lie entirely beyond `t_max` (only when `w` was rounded up).
+    u_beyond: f64,
     /// Certified signs of `p(t_min)` and `p(t_max)` (non-zero).
     s_min: i8,
     s_max: i8,
-    /// Rounding steps along any path to a top-level coefficient.
-    base_ops: u32,
     /// Bound on the accumulated underflow error per rounding step (see [`Self::tiny`]).
     underflow_unit: f64,
-    top: Node,
+    top: Node<S>,
 }
 
-impl<'p> BernsteinIsolator<'p> {
+impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
     /// Sets up the search on `(t_min, t_max]` for the polynomial with coefficients `p` (lowest
     /// first, finite, degree ≥ 1, last one non-zero). The caller has certified the signs
     /// `s_min` of `p(t_min)` and `s_max` of `p(t_max)` (both non-zero) and checked
     /// `t_min < t_max`, both finite. `None` when the map to `[0, 1]` overflows.
     pub(crate) fn new(p: &'p [f64], t_min: f64, t_max: f64, s_min: i8, s_max: i8) -> Option<Self> {
-        let n = p.len() - 1;
+        let n = S::EXACT_LEN.map_or(p.len() - 1, |len| len - 1);
+        debug_assert_eq!(n + 1, p.len(), "storage matches the degree");
         let (w, w_exact) = diff_rounded_up(t_max, t_min);
         if !w.is_finite() {
             return None;
@@ -107,8 +179,9 @@ impl<'p> BernsteinIsolator<'p> {
         // Step 1: Taylor shift and scaling, q(u) = p(a + w·u), by Horner's rule on
         // polynomials: out ← out·(a + w·u) + c_k. Per step a path meets one product and at
         // most two sums: 3 roundings per step.
-        let mut v: Coeffs = smallvec![0.0; n + 1];
-        let mut m: Coeffs = smallvec![0.0; n + 1];
+        let mut vs = S::zeroed(n + 1);
+        let mut ms = S::zeroed(n + 1);
+        let (v, m) = (vs.at_mut(), ms.at_mut());
         v[0] = p[n];
         m[0] = p[n].abs();
         let (aa, aw) = (a.abs(), w.abs());
@@ -124,7 +197,7 @@ impl<'p> BernsteinIsolator<'p> {
         // Step 2: power basis on [0, 1] → Bernstein basis: bᵢ = Σ_{j≤i} C(i,j)/C(n,j)·q_j,
         // as a division by C(n,j) (two roundings: the binomial and the quotient) followed by
         // n passes of neighbour sums (one rounding each).
-        let binom_ops = binomial_row_into(n, &mut m, &mut v);
+        let binom_ops = binomial_row_into(n, m, v);
         for r in 1..=n {
             for i in (r..=n).rev() {
                 v[i] += v[i - 1];
@@ -147,105 +220,123 @@ impl<'p> BernsteinIsolator<'p> {
             t_max,
             s_min,
             s_max,
-            base_ops,
             underflow_unit,
+            // (t_max − a)/w rounded up: two roundings, each within a relative u.
+            u_beyond: if w_exact {
+                1.0
+            } else {
+                (t_max - a) / w * (1.0 + 4.0 * f64::EPSILON)
+            },
             top: Node {
-                v,
-                m,
+                v: vs,
+                m: ms,
                 u0: 0.0,
                 u1: 1.0,
                 depth: 0,
+                ops: base_ops,
             },
         })
     }
 
-    /// Rounding steps along any path to a coefficient of a node at this depth (each
-    /// de Casteljau halving adds one addition per level, `n` levels; the halving is exact).
-    fn ops(&self, depth: u32) -> u32 {
-        self.base_ops + depth * self.n as u32
+    /// The degree: a compile-time constant for exact-size storage.
+    #[inline]
+    fn n(&self) -> usize {
+        match S::EXACT_LEN {
+            Some(len) => len - 1,
+            None => self.n,
+        }
     }
 
-    /// The absolute underflow allowance of a node at this depth.
+    /// The absolute underflow allowance of a node at this depth (each cut adds at most two
+    /// roundings per level, none of which amplifies an earlier error).
     fn tiny(&self, depth: u32) -> f64 {
-        self.underflow_unit * f64::from(4 + depth)
+        self.underflow_unit * f64::from(4 + 2 * depth)
+    }
+
+    /// The error bound of each coefficient of `node`: `err_i = fac·m_i + tiny`.
+    fn error_terms(&self, node: &Node<S>) -> (f64, f64) {
+        // γ(k)·m* with m* ≤ m̂/(1−γ(k)); the factor (1 + 8ε) covers the roundings of this
+        // bound itself.
+        let fac = gamma_ratio_upper(node.ops as usize) * (1.0 + 8.0 * f64::EPSILON);
+        (fac, self.tiny(node.depth))
     }
 
     /// Certified signs of the node's coefficients (0 = not certain). The end coefficients of
     /// nodes touching `u = 0` (and `u = 1` when `w` is exact) are the values `p(t_min)`,
     /// `p(t_max)`, whose signs the caller certified directly.
-    fn classify(&self, node: &Node) -> Class {
-        let k = self.ops(node.depth) as usize;
-        let g = gamma(k);
-        // γ(k)·m*/… with m* ≤ m̂/(1−γ(k)); the factor (1 + 8ε) covers the roundings of this
-        // bound itself.
-        let fac = g / (1.0 - g) * (1.0 + 8.0 * f64::EPSILON);
-        let tiny = self.tiny(node.depth);
-        let mut last = 0i8;
-        let mut changes = 0u32;
-        let mut uncertain = false;
-        for i in 0..=self.n {
-            let s = if i == 0 && node.u0 == 0.0 {
-                self.s_min
-            } else if i == self.n && node.u1 == 1.0 && self.w_exact {
-                self.s_max
-            } else {
-                let err = fac * node.m[i] + tiny;
-                let x = node.v[i];
-                if x > err {
-                    1
-                } else if -x > err {
-                    -1
-                } else {
-                    0
-                }
-            };
-            if s == 0 {
-                uncertain = true;
-                continue;
-            }
-            if last != 0 && s != last {
-                changes += 1;
-            }
-            last = s;
+    fn classify(&self, node: &Node<S>) -> Class {
+        let (fac, tiny) = self.error_terms(node);
+        let (v, m) = (node.v.at(), node.m.at());
+        let n = self.n();
+        let sign = |i: usize| -> i8 {
+            let err = fac * m[i] + tiny;
+            i8::from(v[i] > err) - i8::from(-v[i] > err)
+        };
+        let first = if node.u0 == 0.0 { self.s_min } else { sign(0) };
+        let last = if node.u1 == 1.0 && self.w_exact {
+            self.s_max
+        } else {
+            sign(n)
+        };
+        if first == 0 || last == 0 {
+            return Class::Split;
         }
-        match (uncertain, changes) {
-            (false, 0) => Class::Empty,
-            (false, 1) => Class::One,
+        let mut prev = first;
+        let mut changes = 0u32;
+        for i in 1..n {
+            let s = sign(i);
+            if s == 0 {
+                return Class::Split;
+            }
+            changes += u32::from(s != prev);
+            prev = s;
+        }
+        changes += u32::from(last != prev);
+        match changes {
+            0 => Class::Empty,
+            1 => Class::One,
             _ => Class::Split,
         }
     }
 
     /// Halves a node with de Casteljau's algorithm at `u = 1/2`: returns (left, right).
-    fn split(&self, node: Node) -> (Node, Node) {
-        let n = self.n;
-        let mut lv = node.v.clone();
-        let mut lm = node.m.clone();
-        let mut rv = node.v;
-        let mut rm = node.m;
-        for r in 1..=n {
-            for i in 0..=(n - r) {
-                rv[i] = (rv[i] + rv[i + 1]) * 0.5;
-                rm[i] = (rm[i] + rm[i + 1]) * 0.5;
+    fn split(&self, node: Node<S>) -> (Node<S>, Node<S>) {
+        let n = self.n();
+        let mut lvs = node.v.clone();
+        let mut lms = node.m.clone();
+        let mut rvs = node.v;
+        let mut rms = node.m;
+        {
+            let (lv, lm, rv, rm) = (lvs.at_mut(), lms.at_mut(), rvs.at_mut(), rms.at_mut());
+            for r in 1..=n {
+                for i in 0..=(n - r) {
+                    rv[i] = (rv[i] + rv[i + 1]) * 0.5;
+                    rm[i] = (rm[i] + rm[i + 1]) * 0.5;
+                }
+                lv[r] = rv[0];
+                lm[r] = rm[0];
             }
-            lv[r] = rv[0];
-            lm[r] = rm[0];
         }
         let mid = 0.5 * (node.u0 + node.u1);
         let depth = node.depth + 1;
+        // One rounded addition per de Casteljau level; the halving is exact.
+        let ops = node.ops + n as u32;
         (
             Node {
-                v: lv,
-                m: lm,
+                v: lvs,
+                m: lms,
                 u0: node.u0,
                 u1: mid,
                 depth,
+                ops,
             },
             Node {
-                v: rv,
-                m: rm,
+                v: rvs,
+                m: rms,
                 u0: mid,
                 u1: node.u1,
                 depth,
+                ops,
             },
         )
     }
@@ -258,10 +349,10 @@ impl<'p> BernsteinIsolator<'p> {
     /// one step *inwards* from the correctly rounded `fma(w, u, a)`, so they lie strictly
     /// inside the node, where there is exactly one root; the signs of `p` there are then
     /// checked with [`horner_bounded`] to prove the root was not skipped.
-    fn bracket(&self, node: &Node) -> Result<Option<Bracket>, ()> {
+    fn bracket(&self, node: &Node<S>) -> Result<Option<Bracket>, ()> {
         let s_lo = if node.u0 == 0.0 {
             self.s_min
-        } else if node.v[0] > 0.0 {
+        } else if node.v.at()[0] > 0.0 {
             1
         } else {
             -1
@@ -281,32 +372,88 @@ impl<'p> BernsteinIsolator<'p> {
         } else {
             w_u_a(self.w, node.u1, self.a).next_down()
         };
-        if node.u0 != 0.0 && certified_sign(self.p, lo) != s_lo {
-            return Err(());
+        let mut f_lo = f64::NAN;
+        if node.u0 != 0.0 {
+            let (f, s) = certified_value(self.p, lo);
+            if s != s_lo {
+                return Err(());
+            }
+            f_lo = f;
         }
+        let mut f_hi = f64::NAN;
         if hi > self.t_max {
             // The single root of the node is ≤ t_max iff p changes sign on (lo, t_max].
             if self.s_max == s_lo {
                 return Ok(None);
             }
             hi = self.t_max;
-        } else if !(node.u1 == 1.0 && self.w_exact) && certified_sign(self.p, hi) != -s_lo {
-            return Err(());
+        } else if !(node.u1 == 1.0 && self.w_exact) {
+            let (f, s) = certified_value(self.p, hi);
+            if s != -s_lo {
+                return Err(());
+            }
+            f_hi = f;
         }
         if lo >= hi {
             return Err(());
         }
-        Ok(Some(Bracket { lo, hi, s_lo }))
+        Ok(Some(Bracket {
+            lo,
+            hi,
+            s_lo,
+            f_lo,
+            f_hi,
+        }))
+    }
+
+    /// Replaces an undecided node by its two halves on the stack (left half on top). False
+    /// when the budget is spent or the node is too narrow to halve exactly.
+    ///
+    /// (Rigorous Bézier clipping — cutting away the parts where the convex hull of the
+    /// control polygon proves there is no root — was tried here and removed: on ray–torus
+    /// and ray–Barth polynomials it almost never removed half a node, and cost more than the
+    /// halvings it saved; see `paper-notes/isolation.md`.)
+    fn expand(
+        &self,
+        node: Node<S>,
+        stack: &mut SmallVec<[Node<S>; 8]>,
+        splits: &mut u32,
+        stats: &mut RootStats,
+    ) -> bool {
+        if node.depth >= MAX_DEPTH || *splits >= MAX_SPLITS {
+            return false;
+        }
+        *splits += 1;
+        stats.subdivisions += 1;
+        if 0.5 * (node.u0 + node.u1) <= node.u0 {
+            return false;
+        }
+        let (l, r) = self.split(node);
+        stack.push(r);
+        stack.push(l);
+        true
+    }
+
+    fn take_top(&mut self) -> Node<S> {
+        let empty = Node {
+            v: S::zeroed(0),
+            m: S::zeroed(0),
+            u0: 0.0,
+            u1: 1.0,
+            depth: 0,
+            ops: 0,
+        };
+        std::mem::replace(&mut self.top, empty)
     }
 
     /// The smallest root in `(t_min, t_max]`: depth-first, left half first, stopping at the
     /// first node that holds exactly one root.
-    pub(crate) fn first_root(&self, stats: &mut RootStats) -> Search {
-        let mut stack: SmallVec<[Node; 8]> = SmallVec::new();
-        stack.push(self.top.clone());
+    pub(crate) fn first_root(mut self, stats: &mut RootStats) -> Search {
+        let mut stack: SmallVec<[Node<S>; 8]> = SmallVec::new();
+        stack.push(self.take_top());
         let mut splits = 0u32;
         while let Some(node) = stack.pop() {
-            if node.u0 > 0.0 && w_u_a(self.w, node.u0, self.a) > self.t_max {
+            if node.u0 > self.u_beyond {
                 // Entirely beyond t_max (w rounded up), and everything left of it is empty.
                 return Search::NoRoot;
             }
@@ -320,14 +467,9 @@ impl<'p> BernsteinIsolator<'p> {
                     };
                 }
                 Class::Split => {
-                    if node.depth >= MAX_DEPTH || splits >= MAX_SPLITS {
+                    if !self.expand(node, &mut stack, &mut splits, stats) {
                         return Search::Uncertain;
                     }
-                    splits += 1;
-                    stats.subdivisions += 1;
-                    let (l, r) = self.split(node);
-                    stack.push(r);
-                    stack.push(l);
                 }
             }
         }
@@ -336,13 +478,13 @@ impl<'p> BernsteinIsolator<'p> {
 
     /// Every root in `(t_min, t_max]`, as sorted disjoint brackets; `None` when a sign could
     /// not be certified.
-    pub(crate) fn all_roots(&self, stats: &mut RootStats) -> Option<Vec<Bracket>> {
+    pub(crate) fn all_roots(mut self, stats: &mut RootStats) -> Option<Vec<Bracket>> {
         let mut out = Vec::new();
-        let mut stack: SmallVec<[Node; 8]> = SmallVec::new();
-        stack.push(self.top.clone());
+        let mut stack: SmallVec<[Node<S>; 8]> = SmallVec::new();
+        stack.push(self.take_top());
         let mut splits = 0u32;
         while let Some(node) = stack.pop() {
-            if node.u0 > 0.0 && w_u_a(self.w, node.u0, self.a) > self.t_max {
+            if node.u0 > self.u_beyond {
                 break;
             }
             match self.classify(&node) {
@@ -353,18 +495,85 @@ impl<'p> BernsteinIsolator<'p> {
                     Err(()) => return None,
                 },
                 Class::Split => {
-                    if node.depth >= MAX_DEPTH || splits >= MAX_SPLITS {
+                    if !self.expand(node, &mut stack, &mut splits, stats) {
                         return None;
                     }
-                    splits += 1;
-                    stats.subdivisions += 1;
-                    let (l, r) = self.split(node);
-                    stack.push(r);
-                    stack.push(l);
                 }
             }
         }
         Some(out)
+    }
+}
+
+/// [`BernsteinIsolator::first_root`] with coefficient storage sized to the degree: fixed
+/// arrays of exactly `n + 1` entries up to degree 10 (loops with constant bounds), a fixed
+/// 25-entry array up to degree 24 (no heap allocation), `Vec` above.
+pub(crate) fn first_root(
+    p: &[f64],
+    t_min: f64,
+    t_max: f64,
+    s_min: i8,
+    s_max: i8,
+    stats: &mut RootStats,
+) -> Search {
+    fn run<S: Coeffs>(
+        p: &[f64],
+        (t_min, t_max, s_min, s_max): (f64, f64, i8, i8),
+        stats: &mut RootStats,
+    ) -> Search {
+        match BernsteinIsolator::<S>::new(p, t_min, t_max, s_min, s_max) {
+            Some(iso) => iso.first_root(stats),
+            None => Search::Uncertain,
+        }
+    }
+    let args = (t_min, t_max, s_min, s_max);
+    match p.len() {
+        2 => run::<[f64; 2]>(p, args, stats),
+        3 => run::<[f64; 3]>(p, args, stats),
+        4 => run::<[f64; 4]>(p, args, stats),
+        5 => run::<[f64; 5]>(p, args, stats),
+        6 => run::<[f64; 6]>(p, args, stats),
+        7 => run::<[f64; 7]>(p, args, stats),
+        8 => run::<[f64; 8]>(p, args, stats),
+        9 => run::<[f64; 9]>(p, args, stats),
+        10 => run::<[f64; 10]>(p, args, stats),
+        11 => run::<[f64; 11]>(p, args, stats),
+        12..=25 => run::<Cap<25>>(p, args, stats),
+        _ => run::<Vec<f64>>(p, args, stats),
+    }
+}
+
+/// [`BernsteinIsolator::all_roots`] with storage as in [`first_root`]; `None` when a sign
+/// could not be certified.
+pub(crate) fn all_roots(
+    p: &[f64],
+    t_min: f64,
+    t_max: f64,
+    s_min: i8,
+    s_max: i8,
+    stats: &mut RootStats,
+) -> Option<Vec<Bracket>> {
+    fn run<S: Coeffs>(
+        p: &[f64],
+        (t_min, t_max, s_min, s_max): (f64, f64, i8, i8),
+        stats: &mut RootStats,
+    ) -> Option<Vec<Bracket>> {
+        BernsteinIsolator::<S>::new(p, t_min, t_max, s_min, s_max)?.all_roots(stats)
+    }
+    let args = (t_min, t_max, s_min, s_max);
+    match p.len() {
+        2 => run::<[f64; 2]>(p, args, stats),
+        3 => run::<[f64; 3]>(p, args, stats),
+        4 => run::<[f64; 4]>(p, args, stats),
+        5 => run::<[f64; 5]>(p, args, stats),
+        6 => run::<[f64; 6]>(p, args, stats),
+        7 => run::<[f64; 7]>(p, args, stats),
+        8 => run::<[f64; 8]>(p, args, stats),
+        9 => run::<[f64; 9]>(p, args, stats),
+        10 => run::<[f64; 10]>(p, args, stats),
+        11 => run::<[f64; 11]>(p, args, stats),
+        12..=25 => run::<Cap<25>>(p, args, stats),
+        _ => run::<Vec<f64>>(p, args, stats),
     }
 }
 
@@ -395,14 +604,47 @@ fn diff_rounded_up(hi: f64, lo: f64) -> (f64, bool) {
     }
 }
 
+/// Degrees with a precomputed row of reciprocal binomials.
+const RECIP_ROWS: usize = 25;
+
+/// `RECIP_BINOM[n][j] = 1/C(n, j)` rounded to nearest, for `n < RECIP_ROWS` (computed at
+/// compile time from exact integer binomials; one rounding each).
+const RECIP_BINOM: [[f64; RECIP_ROWS]; RECIP_ROWS] = {
+    let mut t = [[0.0; RECIP_ROWS]; RECIP_ROWS];
+    let mut n = 0;
+    while n < RECIP_ROWS {
+        let mut c: u64 = 1;
+        let mut j = 0;
+        while j <= n {
+            if j > 0 {
+                c = c * (n - j + 1) as u64 / j as u64;
+            }
+            t[n][j] = 1.0 / c as f64;
+            j += 1;
+        }
+        n += 1;
+    }
+    t
+};
+
 /// Divides `v[j]` (and `m[j]`) by `C(n, j)`; returns the roundings this adds on any path.
 fn binomial_row_into(n: usize, m: &mut [f64], v: &mut [f64]) -> u32 {
-    if n <= 60 {
-        // Exact in u128 (C(60, 30) ≈ 1.2e17; the running product C(n, j)·(n − j) < 2^70).
-        let mut c: u128 = 1;
+    if n < RECIP_ROWS {
+        // Multiplication by the rounded reciprocal: two roundings (the table entry and the
+        // product), and no division in the hot path.
+        let row = &RECIP_BINOM[n];
+        for j in 0..=n {
+            v[j] *= row[j];
+            m[j] *= row[j];
+        }
+        2
+    } else if n <= 60 {
+        // Exact in u64: C(60, 30) ≈ 1.2e17 and the running product C(n, j−1)·(n − j + 1)
+        // stays below 60·1.2e17 < 2^63. One rounding to f64, one for the quotient.
+        let mut c: u64 = 1;
         for j in 0..=n {
             if j > 0 {
-                c = c * (n - j + 1) as u128 / j as u128;
+                c = c * (n - j + 1) as u64 / j as u64;
             }
             let cf = c as f64;
             v[j] /= cf;
@@ -423,47 +665,11 @@ fn binomial_row_into(n: usize, m: &mut [f64], v: &mut [f64]) -> u32 {
     }
 }
 
-/// `p(x)` by Horner's rule with a rigorous absolute error bound, as in
-/// [`Poly::eval_with_error`](crate::Poly::eval_with_error), plus an underflow allowance that
-/// follows the growth of `|x|^i`.
-///
-/// # Accuracy
-/// `|value − p(x)| ≤ err` for the stored coefficients and `x`: `err = γ(2n)·S/(1 − γ(2n))·(1 +
-/// 8ε) + ETA·Σ|x|^i`, `S = Σ|cᵢ||x|^i` computed alongside (Higham eq. 5.3). Needs finite input.
-#[inline]
-pub(crate) fn horner_bounded(c: &[f64], x: f64) -> (f64, f64) {
-    let ax = x.abs();
-    let mut v = 0.0;
-    let mut s = 0.0;
-    let mut z = 0.0;
-    for &ci in c.iter().rev() {
-        v = v * x + ci;
-        s = s * ax + ci.abs();
-        z = z * ax + 1.0;
-    }
-    let g = gamma(2 * c.len());
-    let err = g / (1.0 - g) * s * (1.0 + 8.0 * f64::EPSILON) + 2.0 * ETA * z;
-    (v, err)
-}
-
-/// The certified sign of `p(x)` (0 when not certain).
-#[inline]
-pub(crate) fn certified_sign(c: &[f64], x: f64) -> i8 {
-    let (v, err) = horner_bounded(c, x);
-    if v > err {
-        1
-    } else if -v > err {
-        -1
-    } else {
-        0
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::scalar::Rat;
-    use crate::univariate::Poly;
+    use crate::univariate::{Poly, gamma};
     use num_traits::Signed;
 
     fn exact_bernstein(p: &Poly<f64>, a: f64, w: f64) -> Vec<Rat> {
@@ -491,9 +697,9 @@ mod tests {
     #[test]
     fn bernstein_error_bound_contains_exact_coefficients() {
         let p = Poly::new(vec![-1.3e3, 2.7, 0.41, -7.9, 1.0, 0.031]);
-        let iso = BernsteinIsolator::new(p.coeffs(), -3.7, 11.3, 1, 1).unwrap();
+        let iso = BernsteinIsolator::<[f64; 6]>::new(p.coeffs(), -3.7, 11.3, 1, 1).unwrap();
         let exact = exact_bernstein(&p, iso.a, iso.w);
-        let g = gamma(iso.ops(0) as usize);
+        let g = gamma(iso.top.ops as usize);
         for (i, e) in exact.iter().enumerate() {
             let err = g / (1.0 - g) * iso.top.m[i];
             let diff = (Rat::from_float(iso.top.v[i]).unwrap() - e).abs();
@@ -520,20 +726,5 @@ mod tests {
             !exact && w >= 1.0,
             "1 − 1e-30 rounds to 1 and is bumped up: {w}"
         );
-    }
-
-    #[test]
-    fn horner_bound_contains_exact_value() {
-        let p = Poly::<f64>::from_roots(&[0.1, 0.2, 0.3, 0.4]);
-        let pr = p.to_rat().unwrap();
-        for x in [0.1, 0.15, 0.3000001, 2.0, -5.0] {
-            let (v, err) = horner_bounded(p.coeffs(), x);
-            let exact = pr.eval(&Rat::from_float(x).unwrap());
-            let diff = (Rat::from_float(v).unwrap() - exact).abs();
-            assert!(
-                diff <= Rat::from_float(err).unwrap(),
-                "x = {x}: v {v} err {err}"
-            );
-        }
     }
 }

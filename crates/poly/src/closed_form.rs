@@ -11,7 +11,7 @@
 //! cancellation on exactly the hard cases (POV-Ray's quartic is off by ±0.1 at scale 1e7),
 //! and the Bernstein path is certified and fast enough (see `paper-notes/isolation.md`).
 
-use crate::bernstein::certified_sign;
+use crate::eval_bound::certified_sign;
 
 /// The smallest root of `c0 + c1·x` in `(t_min, t_max]`: `Some(Some(r))`, `Some(None)` when
 /// there is certainly none, `None` when undecided. Requires `c1 ≠ 0`, finite input.

@@ -8,8 +8,9 @@
 //! query switch to exact rational arithmetic on the same stored polynomial (counted in
 //! [`RootStats::exact_fallbacks`]). See `paper-notes/isolation.md`.
 
-use crate::bernstein::{BernsteinIsolator, Bracket, Search, certified_sign};
+use crate::bernstein::{Bracket, Search, all_roots, first_root};
 use crate::closed_form::{linear_smallest, quadratic_smallest};
+use crate::eval_bound::certified_sign;
 use crate::refine::{Refined, refine_bracket, refine_exact_f64};
 use crate::root_error::RootError;
 use crate::root_interval::RootInterval;
@@ -48,7 +49,16 @@ fn prepare(p: &Poly<f64>, t_min: f64, t_max: f64, x_tol: f64) -> Result<Range, R
         return Ok(Range::Empty);
     }
     let (mut lo, mut hi) = (t_min, t_max);
-    if let Some(b) = p.root_bound() {
+    // Cauchy's bound first (divisions only); the tighter `root_bound` (with Fujiwara's, which
+    // takes n `powf`s) only when the range reaches beyond it.
+    let c = p.coeffs();
+    let n = c.len() - 1;
+    let inv_lc = 1.0 / c[n].abs();
+    let cauchy = c[..n].iter().fold(0.0f64, |m, x| m.max(x.abs() * inv_lc));
+    let cauchy = (1.0 + cauchy) * (1.0 + 8.0 * f64::EPSILON);
+    if !(lo >= -cauchy && hi <= cauchy)
+        && let Some(b) = p.root_bound()
+    {
         // Every real root is in [−B, B]: the open end moves just below −B.
         if lo < -b {
             lo = (-b).next_down();
@@ -69,7 +79,7 @@ impl Poly<f64> {
     /// [`try_smallest_root`](Poly::try_smallest_root) for the reason).
     ///
     /// Runs the default certified method ([`IsolationMethod::Bernstein`] +
-    /// [`RefineMethod::Illinois`], closed forms for degrees 1–2). It stops at the first root:
+    /// [`RefineMethod::NewtonBisection`], closed forms for degrees 1–2). It stops at the first root:
     /// roots further along are never isolated.
     ///
     /// # Accuracy
@@ -308,9 +318,8 @@ impl Poly<f64> {
                 let certified = if lo.is_finite() && hi.is_finite() {
                     let (s_min, s_max) = (certified_sign(c, lo), certified_sign(c, hi));
                     (s_min != 0 && s_max != 0)
-                        .then(|| BernsteinIsolator::new(c, lo, hi, s_min, s_max))
+                        .then(|| all_roots(c, lo, hi, s_min, s_max, stats))
                         .flatten()
-                        .and_then(|iso| iso.all_roots(stats))
                 } else {
                     None
                 };
@@ -392,10 +401,7 @@ fn certified_smallest(
     }
     let (s_min, s_max) = (certified_sign(c, lo), certified_sign(c, hi));
     let search = if s_min != 0 && s_max != 0 {
-        match BernsteinIsolator::new(c, lo, hi, s_min, s_max) {
-            Some(iso) => iso.first_root(stats),
-            None => Search::Uncertain,
-        }
+        first_root(c, lo, hi, s_min, s_max, stats)
     } else {
         Search::Uncertain
     };
@@ -593,7 +599,13 @@ fn refine_heuristic(
     let (lo, hi) = (iv.lo.max(-f64::MAX), iv.hi.min(f64::MAX));
     let (s_lo, s_hi) = (certified_sign(c, lo), certified_sign(c, hi));
     if s_lo != 0 && s_hi == -s_lo {
-        match refine_bracket(c, Bracket { lo, hi, s_lo }, opts.x_tol, opts.refine, stats) {
+        match refine_bracket(
+            c,
+            Bracket::new(lo, hi, s_lo),
+            opts.x_tol,
+            opts.refine,
+            stats,
+        ) {
             Refined::Root(r) => r,
             Refined::Stuck(b) => 0.5 * b.lo + 0.5 * b.hi,
         }

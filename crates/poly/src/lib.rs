@@ -17,6 +17,7 @@
 mod bernstein;
 mod bivariate;
 mod closed_form;
+mod eval_bound;
 mod int_poly;
 mod isolate;
 mod ops;
