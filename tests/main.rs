@@ -1,6 +1,10 @@
 //! Integration tests across `poly`, `groebner` and `render`: one test binary, one `mod` per
 //! topic, to keep link time down (STYLE.md §7).
 
+// Scene language: every file in scenes/ parses and round-trips; torus.scene matches the issue.
+mod scene_files;
+// Scene language: malformed inputs name line, column and key; fuzzed input never panics.
+mod scene_errors;
 // Tracer: sphere coverage vs projected disc, torus depth vs exact rational root, no re-hit of
 // spawned rays, TORUS vs the equivalent ALGEBRAIC_SURFACE.
 mod render_analytic;

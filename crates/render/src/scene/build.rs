@@ -107,18 +107,17 @@ pub fn build(ast: &SceneAst, file: &Path) -> Result<Scene, SceneError> {
     {
         let mut fields = Fields::new(block)?;
         let (texture, name) = build_texture(&mut fields, &base)?;
-        if let Some((name, span)) = &name {
-            if texture_names
+        if let Some((name, span)) = &name
+            && texture_names
                 .iter()
                 .flatten()
                 .any(|n| n.eq_ignore_ascii_case(name))
-            {
-                return Err(invalid(
-                    span,
-                    Key::Name,
-                    format!("a texture named `{name}` is already defined"),
-                ));
-            }
+        {
+            return Err(invalid(
+                span,
+                Key::Name,
+                format!("a texture named `{name}` is already defined"),
+            ));
         }
         texture_names.push(name.map(|(n, _)| n));
         scene.textures.push(texture);
@@ -624,10 +623,10 @@ fn build_viewport(f: &mut Fields<'_>) -> Result<Viewport, SceneError> {
     let size = f.size(Key::Size)?.ok_or_else(|| f.missing(Key::Size, ""))?;
     // `Origin` placed Stam's window on his screen; it has no meaning for an image file and
     // is accepted (and checked to be a pair) so that his files read unchanged.
-    if let Some(o) = f.get(Key::Origin) {
-        if !matches!(&o.value, Eval::Tuple(v) if v.len() == 2) {
-            return Err(Fields::wrong(o, "a pair `(x, y)`"));
-        }
+    if let Some(o) = f.get(Key::Origin)
+        && !matches!(&o.value, Eval::Tuple(v) if v.len() == 2)
+    {
+        return Err(Fields::wrong(o, "a pair `(x, y)`"));
     }
     let resolution = f.size(Key::Resolution)?.unwrap_or([1, 1]);
     Ok(Viewport { size, resolution })
@@ -703,14 +702,14 @@ fn read_texture(
             .map_err(|e| fail(e.to_string()))?
             .to_rgb8();
         let (w, h) = img.dimensions();
-        if let Some([sw, sh]) = size {
-            if [sw, sh] != [w, h] {
-                return Err(invalid(
-                    f.span_of(Key::Size),
-                    Key::Size,
-                    format!("is {sw}x{sh} but the image is {w}x{h}"),
-                ));
-            }
+        if let Some([sw, sh]) = size
+            && [sw, sh] != [w, h]
+        {
+            return Err(invalid(
+                f.span_of(Key::Size),
+                Key::Size,
+                format!("is {sw}x{sh} but the image is {w}x{h}"),
+            ));
         }
         let texels = img
             .pixels()
@@ -986,4 +985,217 @@ fn build_shape(f: &Fields<'_>, shape: ShapeType) -> Result<ShapeKind, SceneError
             }
         }
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const CAMERA: &str = "#camera Eye = (0,-8,5) LookAt = (0,0,0) ViewField = 50\n";
+
+    fn scene(text: &str) -> Result<Scene, SceneError> {
+        parse(&format!("{CAMERA}{text}"), Path::new("b.scene"))
+    }
+
+    fn only_object(text: &str) -> Object {
+        let s = scene(text).unwrap();
+        assert_eq!(s.objects.len(), 1, "one object in {text:?}");
+        s.objects
+            .into_iter()
+            .next()
+            .unwrap_or_else(|| unreachable!())
+    }
+
+    #[test]
+    fn stam_sphere_radius_squared_and_polygon_corner_order() {
+        let o = only_object("#object Type = SPHERE Center = (1,2,3) Radius^2 = 6.25");
+        assert_eq!(
+            o.shape,
+            ShapeKind::Sphere {
+                center: DVec3::new(1.0, 2.0, 3.0),
+                radius: 2.5
+            },
+            "sqrt of Radius^2"
+        );
+        // Stam's a and d are opposite corners: the boundary runs a, b, d, c.
+        let o =
+            only_object("#object Type = POLYGON a = (0,0,0) b = (1,0,0) c = (0,1,0) d = (1,1,0)");
+        let v = |x, y| DVec3::new(x, y, 0.0);
+        assert_eq!(
+            o.shape,
+            ShapeKind::Polygon {
+                vertices: vec![v(0.0, 0.0), v(1.0, 0.0), v(1.0, 1.0), v(0.0, 1.0)]
+            },
+            "unit square in boundary order"
+        );
+    }
+
+    #[test]
+    fn defaults_and_shorthands() {
+        let s = scene("#light Source = (1,2,3)\n#object Type = TORUS Center = (0,0,0) Axis = (0,0,1) MajorRadius = 2 MinorRadius = 1 Cs = 0.5 Scale = 2").unwrap();
+        assert_eq!(s.world, World::default(), "no #world: defaults");
+        assert_eq!(s.viewport, Viewport::default(), "no #viewport: defaults");
+        assert_eq!(s.output, None, "no #save");
+        assert_eq!(
+            s.lights[0].color,
+            Rgb::ONE,
+            "light colour defaults to white"
+        );
+        let CameraSpec::LookAt(cam) = &s.camera else {
+            panic!("look-at camera")
+        };
+        assert_eq!(cam.up, DVec3::Z, "Up defaults to z");
+        let o = &s.objects[0];
+        assert_eq!(o.material.cs, Rgb::splat(0.5), "one number is a grey");
+        assert_eq!(o.transform.scale, DVec3::splat(2.0), "uniform scale");
+        let d = Material::default();
+        assert_eq!(
+            (o.material.kd, o.material.ks, o.material.illumination),
+            (d.kd, d.ks, d.illumination),
+            "material defaults"
+        );
+    }
+
+    #[test]
+    fn full_world_viewport_save_and_stam_camera() {
+        let s = parse(
+            "#world BackGnd = (0.1,0.2,0.3) Shadows = OFF MaxDepth = 3 Attenuation = ON\n\
+             #camera Focal = 2 Distance = 7.4 ViewField = 65 Rotation = (1,2,3) Center = (4,5,6)\n\
+             #viewport Size = (640, 480) Origin = (0, 0) Resolution = (4, 2)\n\
+             #save File Name = \"out dir/a.png\"",
+            Path::new("w.scene"),
+        )
+        .unwrap();
+        assert_eq!(
+            s.world,
+            World {
+                background: DVec3::new(0.1, 0.2, 0.3),
+                shadows: false,
+                max_depth: 3,
+                attenuation: true
+            },
+            "world"
+        );
+        assert_eq!(
+            s.camera,
+            CameraSpec::Stam(StamCamera {
+                focal: 2.0,
+                distance: 7.4,
+                view_field_deg: 65.0,
+                rotation_deg: DVec3::new(1.0, 2.0, 3.0),
+                center: DVec3::new(4.0, 5.0, 6.0),
+            }),
+            "Stam's camera"
+        );
+        assert_eq!(
+            s.viewport,
+            Viewport {
+                size: [640, 480],
+                resolution: [4, 2]
+            },
+            "viewport"
+        );
+        assert_eq!(
+            s.output,
+            Some(PathBuf::from("out dir/a.png")),
+            "output as written"
+        );
+    }
+
+    #[test]
+    fn textures_by_name_or_the_only_one() {
+        let s = scene(
+            "#object Type = PLANE Origin = (0,0,0) Normal = (0,0,1) Illumination = TEXTURE\n\
+             #texture Type = CHECKER Unit = 0.5 Color1 = 1 Color2 = (0.5, 0, 0)",
+        )
+        .unwrap();
+        assert_eq!(
+            s.objects[0].material.texture,
+            Some(0),
+            "the only texture, declared later"
+        );
+        assert_eq!(
+            s.textures[0],
+            Texture::Checker(CheckerTexture {
+                unit: 0.5,
+                colors: [Rgb::ONE, DVec3::new(0.5, 0.0, 0.0)]
+            }),
+            "checker"
+        );
+        let s = scene(
+            "#texture Type = CHECKER Unit = 1 Name = a\n#texture Type = CHECKER Unit = 2 Name = B\n\
+             #object Type = PLANE Origin = (0,0,0) Normal = (0,0,1) Illumination = MIRROR Texture = b",
+        )
+        .unwrap();
+        assert_eq!(
+            s.objects[0].material.texture,
+            Some(1),
+            "by name, case-insensitive"
+        );
+        assert_eq!(
+            s.objects[0].material.illumination,
+            Illumination::Mirror,
+            "a textured mirror"
+        );
+    }
+
+    #[test]
+    fn image_textures_are_read_relative_to_the_scene() {
+        let dir = tempfile::tempdir().unwrap();
+        // Stam's raw format: all red bytes, then green, then blue; 2 × 1 texels.
+        std::fs::write(dir.path().join("t.rgb"), [255u8, 0, 0, 255, 51, 102]).unwrap();
+        let mut png = image::RgbImage::new(1, 2);
+        png.put_pixel(0, 1, image::Rgb([0, 255, 0]));
+        png.save(dir.path().join("t.png")).unwrap();
+        let file = dir.path().join("s.scene");
+        let s = parse(
+            &format!("{CAMERA}#texture Size = 2x1 File Name = t.rgb Unit = 3\n#texture File Name = t.png Unit = 1"),
+            &file,
+        )
+        .unwrap();
+        let Texture::Image(raw) = &s.textures[0] else {
+            panic!("image")
+        };
+        assert_eq!(
+            (raw.width, raw.height, raw.unit),
+            (2, 1, 3.0),
+            "raw size and unit"
+        );
+        assert_eq!(
+            raw.texels,
+            vec![DVec3::new(1.0, 0.0, 0.2), DVec3::new(0.0, 1.0, 0.4)],
+            "planar RGB"
+        );
+        let Texture::Image(p) = &s.textures[1] else {
+            panic!("image")
+        };
+        assert_eq!((p.width, p.height), (1, 2), "png size");
+        assert_eq!(
+            p.texels,
+            vec![Rgb::ZERO, DVec3::Y],
+            "png texels, first row first"
+        );
+
+        let err = parse(
+            &format!("{CAMERA}#texture Size = 3x1 File Name = t.rgb Unit = 3"),
+            &file,
+        )
+        .unwrap_err();
+        assert!(
+            err.to_string()
+                .ends_with("expected 3 × 3 × 1 = 9 bytes of planar RGB, found 6"),
+            "{err}"
+        );
+        let err = parse(
+            &format!("{CAMERA}#texture Size = 1x1\nFile Name = nope.rgb Unit = 1"),
+            &file,
+        )
+        .unwrap_err();
+        assert_eq!(
+            err.span().map(|s| (s.line, s.col)),
+            Some((3, 13)),
+            "points at the file name: {err}"
+        );
+        assert!(err.to_string().contains("cannot read `"), "{err}");
+    }
 }

@@ -280,12 +280,14 @@ pub enum ErrorKind {
         max: u32,
     },
     /// An equation whose degree exceeds the supported maximum.
-    #[error("equation degree {degree} exceeds the maximum {max}")]
+    #[error("degree {degree} of `{expr}` exceeds the maximum {max}")]
     DegreeTooHigh {
         /// The degree the operation would produce.
         degree: u64,
         /// The limit.
         max: u32,
+        /// The operation, as printed (shortened).
+        expr: String,
     },
     /// `Texture = name` with no `#texture` of that name, or `TEXTURE` illumination without a
     /// texture to use.

@@ -142,6 +142,11 @@ impl<'a> Lexer<'a> {
         }
     }
 
+    /// Where the next character is.
+    pub(crate) fn position(&self) -> Span {
+        self.span()
+    }
+
     fn span(&self) -> Span {
         Span {
             file: self.file.clone(),

@@ -170,3 +170,227 @@ pub(crate) fn print_expr(out: &mut String, e: &Expr) {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+    use std::sync::Arc;
+
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::scene::error::Span;
+    use crate::scene::expr::Axis;
+    use crate::scene::model::Illumination;
+    use crate::scene::syntax::{
+        Command, Key, KeyUse, ShapeType, Spanned, TextureType, ValueKind, key_use, parse_syntax,
+    };
+
+    fn span() -> Span {
+        Span {
+            file: Arc::from(Path::new("gen")),
+            line: 1,
+            col: 1,
+        }
+    }
+
+    fn e(kind: ExprKind) -> Expr {
+        Expr { kind, span: span() }
+    }
+
+    fn spanned<T>(value: T) -> Spanned<T> {
+        Spanned {
+            value,
+            span: span(),
+        }
+    }
+
+    /// Names that the parser reads as names (not variables, functions or keywords of `Let`).
+    fn name() -> impl Strategy<Value = String> {
+        "[a-wA-W_][a-zA-Z0-9_]{0,5}"
+            .prop_filter("not a function", |n| !n.eq_ignore_ascii_case("sqrt"))
+    }
+
+    fn number() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            (0u32..1000).prop_map(f64::from),
+            0.0..1e3f64,
+            prop::sample::select(vec![
+                0.1,
+                1e-300,
+                5e-324,
+                1e300,
+                f64::MAX,
+                0.5,
+                2.0f64.sqrt()
+            ]),
+        ]
+    }
+
+    fn expr() -> impl Strategy<Value = Expr> {
+        let leaf = prop_oneof![
+            number().prop_map(|v| e(ExprKind::Number(v))),
+            prop::sample::select(vec![Axis::X, Axis::Y, Axis::Z]).prop_map(|a| e(ExprKind::Var(a))),
+            name().prop_map(|n| e(ExprKind::Name(n))),
+        ];
+        leaf.prop_recursive(5, 48, 2, |inner| {
+            let ops = prop::sample::select(vec![
+                BinOp::Add,
+                BinOp::Sub,
+                BinOp::Mul,
+                BinOp::Div,
+                BinOp::Pow,
+            ]);
+            prop_oneof![
+                inner.clone().prop_map(|x| e(ExprKind::Neg(Box::new(x)))),
+                inner.clone().prop_map(|x| e(ExprKind::Sqrt(Box::new(x)))),
+                (ops, inner.clone(), inner).prop_map(|(op, l, r)| e(ExprKind::Binary {
+                    op: spanned(op),
+                    lhs: Box::new(l),
+                    rhs: Box::new(r),
+                })),
+            ]
+        })
+    }
+
+    fn tuple(n: usize) -> impl Strategy<Value = Value> {
+        prop::collection::vec(expr(), n).prop_map(Value::Tuple)
+    }
+
+    fn value(kind: ValueKind) -> BoxedStrategy<Value> {
+        match kind {
+            ValueKind::Number => expr().prop_map(Value::Number).boxed(),
+            ValueKind::Vector => tuple(3).boxed(),
+            ValueKind::VectorOrScalar => {
+                prop_oneof![tuple(3), expr().prop_map(Value::Number)].boxed()
+            }
+            ValueKind::Pair => tuple(2).boxed(),
+            ValueKind::Switch => any::<bool>().prop_map(Value::Switch).boxed(),
+            ValueKind::Shape => prop::sample::select(ShapeType::ALL.to_vec())
+                .prop_map(Value::Shape)
+                .boxed(),
+            ValueKind::TextureType => {
+                prop::sample::select(vec![TextureType::Image, TextureType::Checker])
+                    .prop_map(Value::TextureType)
+                    .boxed()
+            }
+            ValueKind::Illumination => prop::sample::select(vec![
+                Illumination::Blackbody,
+                Illumination::Ambient,
+                Illumination::Diffuse,
+                Illumination::Texture,
+                Illumination::Specular,
+                Illumination::Mirror,
+                Illumination::Transparent,
+            ])
+            .prop_map(Value::Illumination)
+            .boxed(),
+            ValueKind::Bounds => prop_oneof![
+                Just(Value::Bounds(None)),
+                prop::collection::vec(expr(), 6).prop_map(|v| {
+                    let mut it = v.into_iter();
+                    let mut pair = || {
+                        [
+                            it.next().unwrap_or_else(|| unreachable!()),
+                            it.next().unwrap_or_else(|| unreachable!()),
+                        ]
+                    };
+                    Value::Bounds(Some(Box::new([pair(), pair(), pair()])))
+                }),
+            ]
+            .boxed(),
+            ValueKind::Path => prop_oneof!["[a-zA-Z0-9_./=#()-]{1,12}", "[a-z ]{1,6}/[a-z. ]{1,6}"]
+                .prop_map(Value::Path)
+                .boxed(),
+            ValueKind::Word => "[a-zA-Z_][a-zA-Z0-9_]{0,6}".prop_map(Value::Word).boxed(),
+        }
+    }
+
+    /// An entry allowed in `command` (for objects, of type `shape`).
+    fn entry(command: Command, shape: Option<ShapeType>) -> BoxedStrategy<Entry> {
+        let keys: Vec<(Key, ValueKind)> = Key::ALL
+            .iter()
+            .filter_map(|&k| match key_use(command, shape, k) {
+                KeyUse::Allowed(kind) if k != Key::Type || command == Command::Texture => {
+                    Some((k, kind))
+                }
+                _ => None,
+            })
+            .collect();
+        let set = prop::sample::select(keys).prop_flat_map(|(k, kind)| {
+            value(kind).prop_map(move |v| Entry::Set {
+                key: spanned(k),
+                value: spanned(v),
+            })
+        });
+        let let_ = (
+            name().prop_filter("a Let name", |n| {
+                !matches!(n.to_ascii_lowercase().as_str(), "x" | "y" | "z")
+            }),
+            expr(),
+        )
+            .prop_map(|(n, v)| Entry::Let {
+                name: spanned(n),
+                value: v,
+            });
+        prop_oneof![4 => set, 1 => let_].boxed()
+    }
+
+    fn block() -> impl Strategy<Value = Block> {
+        prop::sample::select(Command::ALL.to_vec()).prop_flat_map(|command| {
+            if command == Command::Object {
+                prop::sample::select(ShapeType::ALL.to_vec())
+                    .prop_flat_map(move |shape| {
+                        prop::collection::vec(entry(command, Some(shape)), 0..6).prop_map(
+                            move |mut entries| {
+                                let ty = Entry::Set {
+                                    key: spanned(Key::Type),
+                                    value: spanned(Value::Shape(shape)),
+                                };
+                                entries.insert(0, ty);
+                                Block {
+                                    command: spanned(command),
+                                    entries,
+                                }
+                            },
+                        )
+                    })
+                    .boxed()
+            } else {
+                prop::collection::vec(entry(command, None), 0..6)
+                    .prop_map(move |entries| Block {
+                        command: spanned(command),
+                        entries,
+                    })
+                    .boxed()
+            }
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+
+        /// STYLE.md §7: parse → print → parse gives the same tree, for random trees.
+        #[test]
+        fn printed_trees_parse_back_equal(blocks in prop::collection::vec(block(), 0..5)) {
+            let ast = SceneAst { blocks, end: span() };
+            let text = print(&ast);
+            let again = parse_syntax(&text, Path::new("printed"));
+            prop_assert!(again.is_ok(), "printed text does not parse: {:?}\n{}", again.err().map(|e| e.to_string()), text);
+            let again = again.unwrap_or_else(|_| unreachable!());
+            prop_assert_eq!(&again, &ast, "round trip changed the tree; text:\n{}", text);
+            prop_assert_eq!(print(&again), text, "printing is stable");
+        }
+    }
+
+    #[test]
+    fn minimal_parentheses() {
+        let text = "#world\nLet a = -(1 + 2) * 3^-2^2 - (4 - 5) / -(-x)^2 + sqrt(2)\n";
+        let ast = parse_syntax(text, Path::new("p")).unwrap();
+        assert_eq!(
+            print(&ast),
+            text,
+            "printing keeps the needed parentheses and no others"
+        );
+    }
+}

@@ -123,7 +123,7 @@ pub enum Value {
     /// An illumination model.
     Illumination(Illumination),
     /// `NONE` (`None`) or `BOX [x0,x1]x[y0,y1]x[z0,z1]` (the three `[lo, hi]` pairs).
-    Bounds(Option<[[Expr; 2]; 3]>),
+    Bounds(Option<Box<[[Expr; 2]; 3]>>),
     /// A file name, as written (quotes removed).
     Path(String),
     /// A name (`Name` of a texture, `Texture` of an object), as written.
@@ -541,6 +541,8 @@ struct Parser<'a> {
     peeked: Option<Token>,
     /// The last token taken, for "missing operator" messages.
     last: Option<Tok>,
+    /// Just after the last token taken (for errors at the end of the text).
+    last_end: Option<Span>,
     /// Current recursion depth of the expression parser.
     nesting: u32,
 }
@@ -554,6 +556,7 @@ impl<'a> Parser<'a> {
             lexer: Lexer::new(text, file),
             peeked: None,
             last: None,
+            last_end: None,
             nesting: 0,
         }
     }
@@ -570,13 +573,22 @@ impl<'a> Parser<'a> {
             Some(t) => t,
             None => self.lexer.next_token()?,
         };
+        if t.tok != Tok::Eof {
+            self.last_end = Some(end_of(&t));
+        }
         self.last = Some(t.tok.clone());
         Ok(t)
     }
 
-    fn expected(token: &Token, expected: impl Into<String>) -> SceneError {
+    /// "expected …, found …" at `token`; at the end of the text, just after the last token
+    /// instead, where the missing piece belongs.
+    fn expected(&self, token: &Token, expected: impl Into<String>) -> SceneError {
+        let span = match (&token.tok, &self.last_end) {
+            (Tok::Eof, Some(end)) => end,
+            _ => &token.span,
+        };
         SceneError::at(
-            &token.span,
+            span,
             ErrorKind::Expected {
                 expected: expected.into(),
                 found: token.tok.describe(),
@@ -590,7 +602,7 @@ impl<'a> Parser<'a> {
         if &t.tok == tok {
             Ok(t)
         } else {
-            Err(Self::expected(&t, what))
+            Err(self.expected(&t, what))
         }
     }
 
@@ -619,10 +631,7 @@ impl<'a> Parser<'a> {
                     blocks.push(self.block(command)?);
                 }
                 _ => {
-                    return Err(Self::expected(
-                        &t,
-                        "a command such as `#world` or `#object`",
-                    ));
+                    return Err(self.expected(&t, "a command such as `#world` or `#object`"));
                 }
             }
         }
@@ -645,10 +654,7 @@ impl<'a> Parser<'a> {
     ) -> Result<Entry, SceneError> {
         let first = self.next()?;
         let Tok::Word(ref word) = first.tok else {
-            return Err(Self::expected(
-                &first,
-                format!("a key or a command in #{}", command.name()),
-            ));
+            return Err(self.expected(&first, format!("a key or a command in #{}", command.name())));
         };
         let line = first.span.line;
         let mut words = vec![(word.clone(), first.span.clone())];
@@ -673,7 +679,7 @@ impl<'a> Parser<'a> {
                             power = Some(text.clone());
                             last_end = end_of(&n);
                         }
-                        _ => return Err(Self::expected(&n, "a number after `^` in a key")),
+                        _ => return Err(self.expected(&n, "a number after `^` in a key")),
                     }
                     // `Radius^2` ends the key.
                     break;
@@ -692,6 +698,24 @@ impl<'a> Parser<'a> {
         }
         let t = self.peek()?.clone();
         if t.tok != Tok::Eq || t.span.line != line {
+            // `Shadows ON`: point at the word after the longest known key, not at the end.
+            for n in (1..words.len()).rev() {
+                let prefix = words[..n]
+                    .iter()
+                    .map(|(w, _)| w.as_str())
+                    .collect::<Vec<_>>()
+                    .join(" ");
+                if Key::from_phrase(&prefix).is_some() {
+                    let (next, span) = &words[n];
+                    return Err(SceneError::at(
+                        span,
+                        ErrorKind::Expected {
+                            expected: format!("`=` after `{prefix}`"),
+                            found: format!("`{next}`"),
+                        },
+                    ));
+                }
+            }
             let what = format!("`=` after `{phrase}`");
             if t.span.line != line {
                 return Err(SceneError::at(
@@ -702,7 +726,7 @@ impl<'a> Parser<'a> {
                     },
                 ));
             }
-            return Err(Self::expected(&t, what));
+            return Err(self.expected(&t, what));
         }
         self.next()?;
 
@@ -809,10 +833,7 @@ impl<'a> Parser<'a> {
         let t = self.next()?;
         match t.tok {
             Tok::Word(w) => Ok((w, t.span)),
-            _ => Err(Self::expected(
-                &t,
-                format!("{expected} after `{} =`", key.name()),
-            )),
+            _ => Err(self.expected(&t, format!("{expected} after `{} =`", key.name()))),
         }
     }
 
@@ -922,6 +943,7 @@ impl<'a> Parser<'a> {
         }
         let (path, span) = self.lexer.path()?;
         self.last = None;
+        self.last_end = Some(self.lexer.position());
         if path.is_empty() {
             return Err(SceneError::at(
                 &span,
@@ -940,45 +962,35 @@ impl<'a> Parser<'a> {
     /// `(w, h)` or Stam's `w x h` with plain numbers (`256x256`).
     fn pair(&mut self, key: Key) -> Result<Value, SceneError> {
         let span = self.peek()?.span.clone();
-        if let Tok::Number { .. } = self.peek()?.tok {
+        let wrong = |found: String| {
+            SceneError::at(
+                &span,
+                ErrorKind::Expected {
+                    expected: format!("a pair `(w, h)` or `w x h` for `{}`", key.name()),
+                    found,
+                },
+            )
+        };
+        if let Tok::Number { value: wv, .. } = self.peek()?.tok {
             let w = self.next()?;
-            let x = self.next()?;
-            if !matches!(&x.tok, Tok::Word(w) if w.eq_ignore_ascii_case("x")) {
-                return Err(Self::expected(
-                    &x,
-                    format!("`x` in `{} = w x h`", key.name()),
-                ));
+            if !matches!(&self.peek()?.tok, Tok::Word(x) if x.eq_ignore_ascii_case("x")) {
+                return Err(wrong("a single number".into()));
             }
+            self.next()?;
             let h = self.next()?;
-            let (Tok::Number { value: wv, .. }, Tok::Number { value: hv, .. }) = (&w.tok, &h.tok)
-            else {
-                return Err(Self::expected(
-                    &h,
-                    format!("a number in `{} = w x h`", key.name()),
-                ));
+            let Tok::Number { value: hv, .. } = h.tok else {
+                return Err(self.expected(&h, format!("a number in `{} = w x h`", key.name())));
             };
             let num = |v: f64, t: &Token| Expr {
                 kind: ExprKind::Number(v),
                 span: t.span.clone(),
             };
-            return Ok(Value::Tuple(vec![num(*wv, &w), num(*hv, &h)]));
+            return Ok(Value::Tuple(vec![num(wv, &w), num(hv, &h)]));
         }
         match self.tuple_or_expr()? {
             Value::Tuple(items) if items.len() == 2 => Ok(Value::Tuple(items)),
-            Value::Tuple(items) => Err(SceneError::at(
-                &span,
-                ErrorKind::Expected {
-                    expected: format!("a pair `(w, h)` for `{}`", key.name()),
-                    found: format!("{} components", items.len()),
-                },
-            )),
-            _ => Err(SceneError::at(
-                &span,
-                ErrorKind::Expected {
-                    expected: format!("a pair `(w, h)` for `{}`", key.name()),
-                    found: "a single number".into(),
-                },
-            )),
+            Value::Tuple(items) => Err(wrong(format!("{} components", items.len()))),
+            _ => Err(wrong("a single number".into())),
         }
     }
 
@@ -1004,7 +1016,7 @@ impl<'a> Parser<'a> {
             if axis > 0 {
                 let t = self.next()?;
                 if !matches!(&t.tok, Tok::Word(w) if w.eq_ignore_ascii_case("x")) {
-                    return Err(Self::expected(&t, "`x` between the ranges of a box"));
+                    return Err(self.expected(&t, "`x` between the ranges of a box"));
                 }
             }
             self.expect(&Tok::LBracket, "`[` to start a range `[lo, hi]`")?;
@@ -1023,7 +1035,7 @@ impl<'a> Parser<'a> {
                 },
             )
         })?;
-        Ok(Value::Bounds(Some([x, y, z])))
+        Ok(Value::Bounds(Some(Box::new([x, y, z]))))
     }
 
     fn enter(&mut self, span: &Span) -> Result<(), SceneError> {
@@ -1048,7 +1060,7 @@ impl<'a> Parser<'a> {
         }
         let open = self.next()?;
         self.enter(&open.span)?;
-        let (first, depth) = self.binary(0)?;
+        let (mut first, depth) = self.binary(0)?;
         if self.peek()?.tok == Tok::Comma {
             let mut items = vec![first];
             while self.peek()?.tok == Tok::Comma {
@@ -1061,6 +1073,7 @@ impl<'a> Parser<'a> {
         }
         self.close(&open)?;
         self.leave();
+        first.span = open.span;
         let (e, _) = self.binary_rest(first, depth, 0)?;
         Ok(Value::Number(e))
     }
@@ -1223,12 +1236,14 @@ impl<'a> Parser<'a> {
             }
             Tok::LParen => {
                 self.enter(&t.span)?;
-                let inner = self.binary(0)?;
+                let (mut inner, depth) = self.binary(0)?;
                 self.close(&t)?;
                 self.leave();
-                Ok(inner)
+                // A parenthesised expression starts at its `(`, where messages point.
+                inner.span = t.span;
+                Ok((inner, depth))
             }
-            _ => Err(Self::expected(&t, "a number, a name or `(`")),
+            _ => Err(self.expected(&t, "a number, a name or `(`")),
         }
     }
 }
@@ -1239,5 +1254,338 @@ fn end_of(t: &Token) -> Span {
     Span {
         col: t.span.col.saturating_add(width),
         ..t.span.clone()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<SceneAst, SceneError> {
+        parse_syntax(text, Path::new("t.scene"))
+    }
+
+    /// The keys of a block, in order, with `Let` written as `Let name`.
+    fn keys(block: &Block) -> Vec<String> {
+        block
+            .entries
+            .iter()
+            .map(|e| match e {
+                Entry::Set { key, .. } => key.value.name().to_owned(),
+                Entry::Let { name, .. } => format!("Let {}", name.value),
+            })
+            .collect()
+    }
+
+    fn value(block: &Block, key: Key) -> &Value {
+        block
+            .entries
+            .iter()
+            .find_map(|e| match e {
+                Entry::Set { key: k, value } if k.value == key => Some(&value.value),
+                _ => None,
+            })
+            .unwrap_or_else(|| panic!("no {key:?} in {block:?}"))
+    }
+
+    fn num(v: f64) -> Expr {
+        Expr {
+            kind: ExprKind::Number(v),
+            span: Span {
+                file: Arc::from(Path::new("")),
+                line: 0,
+                col: 0,
+            },
+        }
+    }
+
+    #[test]
+    fn keys_with_spaces_and_several_pairs_per_line() {
+        let ast = parse(
+            "#save\n  file   NAME = out/t.png\n\
+             #world Shadows = on Attenuation = OFF BackGnd = 0.2\n\
+             #object Type = sphere Center = (0,0,0) RADIUS^2 = 4 Ka = 0.1 Kd = 0.7\n\
+             Bounding Volume = BOX\n   [-1,1]x[-2, 2] X [-3,3]\n",
+        )
+        .unwrap();
+        assert_eq!(
+            keys(&ast.blocks[0]),
+            ["File Name"],
+            "two-word key, any case and spacing"
+        );
+        assert_eq!(
+            value(&ast.blocks[0], Key::FileName),
+            &Value::Path("out/t.png".into()),
+            "raw path"
+        );
+        assert_eq!(
+            keys(&ast.blocks[1]),
+            ["Shadows", "Attenuation", "BackGnd"],
+            "three pairs on a line"
+        );
+        assert_eq!(
+            value(&ast.blocks[1], Key::Shadows),
+            &Value::Switch(true),
+            "`on` is ON"
+        );
+        assert_eq!(
+            keys(&ast.blocks[2]),
+            ["Type", "Center", "Radius^2", "Ka", "Kd", "Bounding volume"],
+            "object keys"
+        );
+        let Value::Bounds(Some(b)) = value(&ast.blocks[2], Key::BoundingVolume) else {
+            panic!("bounds expected")
+        };
+        let neg = |v: f64| Expr {
+            kind: ExprKind::Neg(Box::new(num(v))),
+            ..num(0.0)
+        };
+        assert_eq!(b[2], [neg(3.0), num(3.0)], "third range, on the next line");
+        assert_eq!(ast.blocks[2].command.span.line, 4, "block line");
+    }
+
+    #[test]
+    fn spans_point_at_keys_and_values() {
+        let ast = parse("#light\n  Source = (5,-5,10)   Color = 1").unwrap();
+        let Entry::Set { key, value } = &ast.blocks[0].entries[1] else {
+            panic!("set")
+        };
+        assert_eq!((key.span.line, key.span.col), (2, 24), "`Color` position");
+        assert_eq!((value.span.line, value.span.col), (2, 32), "`1` position");
+    }
+
+    #[test]
+    fn precedence_and_associativity() {
+        let ast = parse("#world Let a = -2^2 Let b = 2^3^2 Let c = 1 - 2 - 3 Let d = 2*-3 + 8/4/2")
+            .unwrap();
+        let lets: Vec<&Expr> = ast.blocks[0]
+            .entries
+            .iter()
+            .map(|e| match e {
+                Entry::Let { value, .. } => value,
+                Entry::Set { .. } => panic!("only Let"),
+            })
+            .collect();
+        let bin = |op, l, r| Expr {
+            kind: ExprKind::Binary {
+                op: Spanned {
+                    value: op,
+                    span: num(0.0).span,
+                },
+                lhs: Box::new(l),
+                rhs: Box::new(r),
+            },
+            ..num(0.0)
+        };
+        let neg = |e| Expr {
+            kind: ExprKind::Neg(Box::new(e)),
+            ..num(0.0)
+        };
+        assert_eq!(
+            *lets[0],
+            neg(bin(BinOp::Pow, num(2.0), num(2.0))),
+            "-2^2 is -(2^2)"
+        );
+        assert_eq!(
+            *lets[1],
+            bin(BinOp::Pow, num(2.0), bin(BinOp::Pow, num(3.0), num(2.0))),
+            "^ is right-associative"
+        );
+        assert_eq!(
+            *lets[2],
+            bin(BinOp::Sub, bin(BinOp::Sub, num(1.0), num(2.0)), num(3.0)),
+            "- is left-associative"
+        );
+        assert_eq!(
+            *lets[3],
+            bin(
+                BinOp::Add,
+                bin(BinOp::Mul, num(2.0), neg(num(3.0))),
+                bin(BinOp::Div, bin(BinOp::Div, num(8.0), num(4.0)), num(2.0))
+            ),
+            "unary minus after an operator; / is left-associative"
+        );
+    }
+
+    #[test]
+    fn stam_texture_size_and_tuples() {
+        let ast =
+            parse("#texture Size = 256x128 File Name = \"wood texture.rgb\" Unit = 10").unwrap();
+        let b = &ast.blocks[0];
+        assert_eq!(
+            value(b, Key::Size),
+            &Value::Tuple(vec![num(256.0), num(128.0)]),
+            "256x128"
+        );
+        assert_eq!(
+            value(b, Key::FileName),
+            &Value::Path("wood texture.rgb".into()),
+            "quoted name"
+        );
+        assert_eq!(
+            keys(b),
+            ["Size", "File Name", "Unit"],
+            "all three keys on one line"
+        );
+        let ast = parse("#object Type = TORUS Scale = (2) Cs = ((1), 2, 3)").unwrap();
+        assert_eq!(
+            value(&ast.blocks[0], Key::Scale),
+            &Value::Number(num(2.0)),
+            "(2) is a number"
+        );
+        assert!(
+            matches!(value(&ast.blocks[0], Key::Cs), Value::Tuple(v) if v.len() == 3),
+            "a tuple whose first item is parenthesised"
+        );
+    }
+
+    #[test]
+    fn nesting_is_bounded_without_overflowing_the_stack() {
+        let deep = format!("#world Let a = {}1{}", "(".repeat(5000), ")".repeat(5000));
+        let err = parse(&deep).unwrap_err();
+        assert!(
+            matches!(err.kind(), Some(ErrorKind::TooDeep { .. })),
+            "{err}"
+        );
+        let minus = format!("#world Let a = {}1", "-".repeat(5000));
+        assert!(
+            matches!(
+                parse(&minus).unwrap_err().kind(),
+                Some(ErrorKind::TooDeep { .. })
+            ),
+            "unary chain"
+        );
+        let powers = format!("#world Let a = 1{}", "^1".repeat(5000));
+        assert!(
+            matches!(
+                parse(&powers).unwrap_err().kind(),
+                Some(ErrorKind::TooDeep { .. })
+            ),
+            "^ chain"
+        );
+        let long_sum = format!("#world Let a = 1{}", " + 1".repeat(5000));
+        let err = parse(&long_sum).unwrap_err();
+        assert!(
+            matches!(
+                err.kind(),
+                Some(ErrorKind::TooDeep {
+                    max: MAX_EXPR_DEPTH
+                })
+            ),
+            "{err}"
+        );
+        let ok_sum = format!("#world Let a = 1{}", " + 1".repeat(900));
+        assert!(parse(&ok_sum).is_ok(), "a 900-term sum is fine");
+    }
+
+    #[test]
+    fn errors_name_line_column_and_token() {
+        let cases: &[(&str, &str)] = &[
+            (
+                "Shadows = ON",
+                "t.scene:1:1: expected a command such as `#world` or `#object`, found `Shadows`",
+            ),
+            (
+                "#world\n  Kx = 1",
+                "t.scene:2:3: unknown key `Kx` in #world",
+            ),
+            ("#dump\n", "t.scene:1:1: unknown command `#dump`"),
+            (
+                "#object\nRadius = 1",
+                "t.scene:2:1: #object must start with `Type = …`, found `Radius`",
+            ),
+            (
+                "#object Type = TORUS Radius = 1",
+                "t.scene:1:22: key `Radius` does not apply to type TORUS in #object",
+            ),
+            (
+                "#object Type = CONE",
+                "t.scene:1:16: unknown value `CONE` for `Type` (expected SPHERE, PLANE, POLYGON, TRIANGLE, BOX, SUPERQUADRIC, TORUS or ALGEBRAIC_SURFACE)",
+            ),
+            (
+                "#object Type = BEZIER_PATCH",
+                "t.scene:1:16: `BEZIER_PATCH` is not supported yet",
+            ),
+            (
+                "#world Shadows = MAYBE",
+                "t.scene:1:18: unknown value `MAYBE` for `Shadows` (expected ON or OFF)",
+            ),
+            (
+                "#world Shadows ON",
+                "t.scene:1:16: expected `=` after `Shadows`, found `ON`",
+            ),
+            (
+                "#world Shadows\n= ON",
+                "t.scene:1:15: expected `=` after `Shadows`, found end of line",
+            ),
+            (
+                "#light Source = (1, 2)",
+                "t.scene:1:17: expected a vector `(x, y, z)` for `Source`, found 2 components",
+            ),
+            (
+                "#light Source = 1",
+                "t.scene:1:17: expected a vector `(x, y, z)` for `Source`, found a single number",
+            ),
+            (
+                "#light Source = (1, 2, 3",
+                "t.scene:1:25: expected `)` to close the `(` at line 1, column 17, found end of file",
+            ),
+            (
+                "#object Type = ALGEBRAIC_SURFACE Equation = 2x",
+                "t.scene:1:46: missing `*` or space between `2` and `x`",
+            ),
+            (
+                "#object Type = SPHERE Ka = 0.1Kd = 1",
+                "t.scene:1:31: missing `*` or space between `0.1` and `Kd`",
+            ),
+            (
+                "#object Type = SPHERE Ka = cos(1)",
+                "t.scene:1:28: unknown function `cos` (the only function is `sqrt`)",
+            ),
+            (
+                "#world Let x = 1",
+                "t.scene:1:12: cannot define `x`: it is a variable",
+            ),
+            (
+                "#world Let a b = 1",
+                "t.scene:1:8: expected `Let name = value` with a one-word name, found `Let a b =`",
+            ),
+            (
+                "#world BackGnd = (1, 2, *)",
+                "t.scene:1:25: expected a number, a name or `(`, found `*`",
+            ),
+            (
+                "#viewport Size = 3",
+                "t.scene:1:18: expected a pair `(w, h)` or `w x h` for `Size`, found a single number",
+            ),
+            (
+                "#viewport Size = (3, 4, 5)",
+                "t.scene:1:18: expected a pair `(w, h)` or `w x h` for `Size`, found 3 components",
+            ),
+            (
+                "#viewport Size = 3 x y",
+                "t.scene:1:22: expected a number in `Size = w x h`, found `y`",
+            ),
+            (
+                "#save File Name =\n out.png",
+                "t.scene:1:18: expected a file name on the same line, found end of line",
+            ),
+            (
+                "#object Type = BOX Bounding volume = BOX [0,1]x[0,1]",
+                "t.scene:1:53: expected `x` between the ranges of a box, found end of file",
+            ),
+            (
+                "#object Type = BOX Bounding volume = SPHERE",
+                "t.scene:1:38: unknown value `SPHERE` for `Bounding volume` (expected NONE or BOX)",
+            ),
+            (
+                "#world Radius^x = 1",
+                "t.scene:1:15: expected a number after `^` in a key, found `x`",
+            ),
+        ];
+        for (text, message) in cases {
+            let err = parse(text).unwrap_err();
+            assert_eq!(err.to_string(), *message, "parsing {text:?}");
+        }
     }
 }
