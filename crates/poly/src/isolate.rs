@@ -11,7 +11,7 @@
 use crate::bernstein::{Bracket, Search, all_roots, first_root};
 use crate::closed_form::{linear_smallest, quadratic_smallest};
 use crate::eval_bound::certified_sign;
-use crate::refine::{Refined, refine_bracket, refine_exact_f64};
+use crate::refine::{Refined, bisect_rational_to_f64, refine_bracket, refine_exact_f64};
 use crate::root_error::RootError;
 use crate::root_interval::RootInterval;
 use crate::root_options::{IsolationMethod, RefineMethod, RootOptions};
@@ -521,25 +521,12 @@ fn refine_exact_interval(seq: &SturmSequence<Rat>, iv: &RootInterval<f64>, x_tol
 
 /// Bisection with exact signs of the square-free part, from an open interval `(lo, hi)` with
 /// one root (signs only at `hi` and midpoints), to `f64` accuracy `x_tol`.
-fn refine_rat_to_f64(seq: &SturmSequence<Rat>, mut lo: Rat, mut hi: Rat, x_tol: f64) -> f64 {
-    let tol = rat_from_f64(x_tol).expect("tolerance was checked");
-    let two = Rat::from_integer(2.into());
+fn refine_rat_to_f64(seq: &SturmSequence<Rat>, lo: Rat, hi: Rat, x_tol: f64) -> f64 {
     let s_hi = seq.sign_of_square_free_at(&hi);
     if s_hi == 0 {
         return rat_to_f64(&hi);
     }
-    loop {
-        let mid = (&lo + &hi) / &two;
-        let (flo, fhi) = (rat_to_f64(&lo), rat_to_f64(&hi));
-        if &hi - &lo <= tol || fhi <= flo.next_up() {
-            return rat_to_f64(&mid);
-        }
-        match seq.sign_of_square_free_at(&mid) {
-            0 => return rat_to_f64(&mid),
-            s if s == s_hi => hi = mid,
-            _ => lo = mid,
-        }
-    }
+    bisect_rational_to_f64(|x| seq.sign_of_square_free_at(x), lo, hi, s_hi, x_tol)
 }
 
 /// Stam's isolation algorithm (seed §3.5.2) with a floating-point count: keep halving

@@ -286,20 +286,61 @@ fn horner_with_derivative(c: &[f64], x: f64) -> (f64, f64, f64) {
 /// per bit gained.
 pub(crate) fn refine_exact_f64(p: &Poly<f64>, b: Bracket, x_tol: f64) -> f64 {
     let q = IntPoly::from_qpoly(&p.to_rat().expect("finite coefficients were checked"));
-    let mut lo = rat_from_f64(b.lo).expect("finite");
-    let mut hi = rat_from_f64(b.hi).expect("finite");
-    let tol = rat_from_f64(x_tol).expect("finite tolerance");
-    let s_lo = b.s_lo;
+    let lo = rat_from_f64(b.lo).expect("finite");
+    let hi = rat_from_f64(b.hi).expect("finite");
+    bisect_rational_to_f64(|x| q.sign_at(x), lo, hi, -b.s_lo, x_tol)
+}
+
+/// Bisection on rationals of an open interval `(lo, hi)` holding exactly one root, across
+/// which `sign_at` (exact) changes from `−s_hi` to `s_hi`; signs are taken only at `hi`'s side
+/// and at midpoints.
+///
+/// # Accuracy
+/// Stops when the width is at most `x_tol` and returns the midpoint rounded to `f64`
+/// (`|r − root| ≤ x_tol/2 + ½ulp`). If the interval first shrinks within one `f64` spacing,
+/// returns the root *correctly rounded* (the sign at the rounding boundary decides), so
+/// exactly representable roots come back exactly. Cost: one exact evaluation per bit.
+pub(crate) fn bisect_rational_to_f64(
+    sign_at: impl Fn(&Rat) -> i8,
+    mut lo: Rat,
+    mut hi: Rat,
+    s_hi: i8,
+    x_tol: f64,
+) -> f64 {
+    let tol = rat_from_f64(x_tol).expect("tolerance was checked");
+    let two = Rat::from_integer(2.into());
     loop {
-        let mid = (&lo + &hi) / Rat::from_integer(2.into());
-        let (flo, fhi) = (rat_to_f64(&lo), rat_to_f64(&hi));
-        if &hi - &lo <= tol || fhi <= flo.next_up() {
+        let mid = (&lo + &hi) / &two;
+        if &hi - &lo <= tol {
             return rat_to_f64(&mid);
         }
-        match q.sign_at(&mid) {
+        let (flo, fhi) = (rat_to_f64(&lo), rat_to_f64(&hi));
+        if flo == fhi {
+            // Every number in (lo, hi) rounds to this double.
+            return flo;
+        }
+        if fhi <= flo.next_up() {
+            // Two candidates: decide on which side of the rounding boundary the root lies.
+            let (Some(a), Some(b)) = (rat_from_f64(flo), rat_from_f64(fhi)) else {
+                return rat_to_f64(&mid);
+            };
+            let boundary = (a + b) / &two;
+            if boundary <= lo {
+                return fhi;
+            }
+            if boundary >= hi {
+                return flo;
+            }
+            return match sign_at(&boundary) {
+                0 => rat_to_f64(&boundary),
+                s if s == s_hi => flo,
+                _ => fhi,
+            };
+        }
+        match sign_at(&mid) {
             0 => return rat_to_f64(&mid),
-            s if s == s_lo => lo = mid,
-            _ => hi = mid,
+            s if s == s_hi => hi = mid,
+            _ => lo = mid,
         }
     }
 }

@@ -145,9 +145,11 @@ impl SturmSequence<Rat> {
 
 impl Poly<f64> {
     /// A Sturm sequence in floating point, normalised for stability: every member is divided
-    /// by its largest coefficient magnitude (a positive factor, so signs are unchanged) and
-    /// remainder coefficients negligible relative to the dividend are dropped (see
-    /// [`Scalar::is_negligible`]).
+    /// by its largest coefficient magnitude (a positive factor, so signs are unchanged), and a
+    /// remainder's leading coefficient is dropped when it is no larger than its own rounding
+    /// error (tracked during the division as `γ(2k)·Σ|terms|`), so degrees fall when the
+    /// exact remainder's would. Coefficients are never dropped for being small relative to
+    /// the others (Wilkinson's polynomial has a leading 1 next to 20!).
     ///
     /// # Accuracy
     /// A heuristic. Each remainder is rounded, so [`SturmSequence::count_roots`] can be wrong
@@ -169,11 +171,11 @@ impl Poly<f64> {
             seq.push(normalise(p.derivative()));
             while seq.last().is_some_and(|v| v.degree() > 0) {
                 let n = seq.len();
-                let (_, r) = seq[n - 2].div_rem(&seq[n - 1]).expect("member is non-zero");
+                let r = neg_rem_f64(&seq[n - 2], &seq[n - 1]);
                 if r.is_zero() {
                     break;
                 }
-                seq.push(normalise(-r));
+                seq.push(normalise(r));
             }
         }
         let multiple_roots = seq.last().is_some_and(|g| g.degree() > 0);
@@ -224,7 +226,39 @@ fn normalise(p: Poly<f64>) -> Poly<f64> {
     if m == 0.0 || !m.is_finite() {
         return p;
     }
-    p.scale(&(1.0 / m)).trim_negligible()
+    p.scale(&(1.0 / m))
+}
+
+/// `−rem(a, d)` in floating point, dropping leading coefficients that are within their own
+/// rounding error of zero (error tracked as `γ(2k)·Σ|aᵢ| + Σ|c·dⱼ|` over the `k` steps).
+fn neg_rem_f64(a: &Poly<f64>, d: &Poly<f64>) -> Poly<f64> {
+    let (ac, dc) = (a.coeffs(), d.coeffs());
+    let dn = dc.len() - 1;
+    if ac.len() <= dn {
+        return -a;
+    }
+    let lc = dc[dn];
+    let mut r = ac.to_vec();
+    let mut mag: Vec<f64> = ac.iter().map(|x| x.abs()).collect();
+    let steps = ac.len() - dn;
+    for k in (0..steps).rev() {
+        let c = r[k + dn] / lc;
+        for (j, dj) in dc.iter().enumerate().take(dn) {
+            r[k + j] -= c * dj;
+            mag[k + j] += (c * dj).abs();
+        }
+    }
+    r.truncate(dn);
+    mag.truncate(dn);
+    let g = crate::univariate::gamma(4 * steps + 2);
+    while let (Some(x), Some(m)) = (r.last(), mag.last()) {
+        if x.abs() > g * m {
+            break;
+        }
+        r.pop();
+        mag.pop();
+    }
+    Poly::new(r.into_iter().map(|x| -x).collect())
 }
 
 pub(crate) fn check_finite(p: &Poly<f64>) -> Result<(), RootError> {
