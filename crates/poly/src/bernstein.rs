@@ -10,13 +10,17 @@
 //! smallest root is found without isolating the others (Collins–Akritas, "Polynomial real root
 //! isolation using Descartes' rule of signs", 1976; see `paper-notes/isolation.md`).
 //!
-//! Every coefficient is carried with the same computation applied to absolute values, `mᵢ`.
-//! For a straight-line program of `k` roundings along any path the computed value satisfies
-//! `|b̂ᵢ − bᵢ| ≤ γ(k)·mᵢ*` (Higham, *Accuracy and Stability*, §3.1, the standard model), and the
-//! computed `m̂ᵢ ≥ (1 − γ(k))·mᵢ*`. A sign is used only when `|b̂ᵢ|` exceeds that bound, so the
-//! sign changes counted are those of the exact Bernstein coefficients of the stored polynomial
-//! on the exact sub-interval. When a needed sign cannot be certified the isolator reports
-//! failure and the caller switches to exact rational arithmetic.
+//! Error bound. For a straight-line program of `+` and `×` with at most `k` roundings along any
+//! path, `|b̂ᵢ − bᵢ| ≤ γ(k)·mᵢ` where `mᵢ` is the same program run exactly on absolute values
+//! (Higham, *Accuracy and Stability*, §3.1, the standard model). Here that program computes the
+//! Bernstein coefficients of `q̃(u) = Σ|c_k|(|a| + |w|·u)^k`, whose power coefficients are all
+//! non-negative; a Bernstein coefficient of such a polynomial is `Σ_j C(i,j)/C(n,j)·q̃_j ≤ q̃(1)`,
+//! and de Casteljau's averages never exceed their inputs. So one number bounds every `mᵢ` of
+//! every node: `M = q̃(1) = Σ|c_k|(|a| + |w|)^k`, computed once by Horner's rule and inflated
+//! for its own rounding. A sign is used only when `|b̂ᵢ| > γ(k)·M + (underflow allowance)`, so
+//! the sign changes counted are those of the exact Bernstein coefficients of the stored
+//! polynomial on the exact sub-interval. When a needed sign cannot be certified the isolator
+//! reports failure and the caller switches to exact rational arithmetic.
 
 use smallvec::SmallVec;
 
@@ -96,8 +100,6 @@ const MAX_SPLITS: u32 = 4000;
 struct Node<S> {
     /// Computed Bernstein coefficients.
     v: S,
-    /// The same computation on absolute values (the error-bound weights).
-    m: S,
     u0: f64,
     u1: f64,
     /// Number of cuts (subdivisions or clips) from the top node.
@@ -160,6 +162,8 @@ pub(crate) struct BernsteinIsolator<'p, S> {
     s_max: i8,
     /// Bound on the accumulated underflow error per rounding step (see [`Self::tiny`]).
     underflow_unit: f64,
+    /// `M`, a bound on the absolute-value weight of every coefficient of every node.
+    mag: f64,
     top: Node<S>,
 }
 
@@ -180,28 +184,23 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         // polynomials: out ← out·(a + w·u) + c_k. Per step a path meets one product and at
         // most two sums: 3 roundings per step.
         let mut vs = S::zeroed(n + 1);
-        let mut ms = S::zeroed(n + 1);
-        let (v, m) = (vs.at_mut(), ms.at_mut());
+        let v = vs.at_mut();
         v[0] = p[n];
-        m[0] = p[n].abs();
         let (aa, aw) = (a.abs(), w.abs());
         for k in (0..n).rev() {
             let len = n - k;
             for i in (1..=len).rev() {
                 v[i] = v[i] * a + v[i - 1] * w;
-                m[i] = m[i] * aa + m[i - 1] * aw;
             }
             v[0] = v[0] * a + p[k];
-            m[0] = m[0] * aa + p[k].abs();
         }
         // Step 2: power basis on [0, 1] → Bernstein basis: bᵢ = Σ_{j≤i} C(i,j)/C(n,j)·q_j,
         // as a division by C(n,j) (two roundings: the binomial and the quotient) followed by
         // n passes of neighbour sums (one rounding each).
-        let binom_ops = binomial_row_into(n, m, v);
+        let binom_ops = binomial_row_into(n, v);
         for r in 1..=n {
             for i in (r..=n).rev() {
                 v[i] += v[i - 1];
-                m[i] += m[i - 1];
             }
         }
         let base_ops = 3 * n as u32 + binom_ops + n as u32;
@@ -211,6 +210,15 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         // per stage.
         let amp = (1.0 + aa + aw).powi(n as i32) * (n + 1) as f64;
         let underflow_unit = ETA * amp * ((n + 1) * (n + 1)) as f64;
+        // M = q̃(1) = Σ|c_k|(|a| + |w|)^k bounds every absolute-value weight (module docs).
+        // Horner on non-negative numbers is increasing in x, so x is rounded up first; the
+        // computed sum is inflated for its 2n + 2 roundings.
+        let x = (aa + aw) * (1.0 + 2.0 * f64::EPSILON);
+        let sum = p.iter().rev().fold(0.0, |s, c| s * x + c.abs());
+        let mag = sum * (1.0 + 2.0 * gamma_ratio_upper(2 * n + 2));
+        if !mag.is_finite() {
+            return None;
+        }
         Some(BernsteinIsolator {
             p,
             n,
@@ -221,6 +229,7 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
             s_min,
             s_max,
             underflow_unit,
+            mag,
             // (t_max − a)/w rounded up: two roundings, each within a relative u.
             u_beyond: if w_exact {
                 1.0
@@ -229,7 +238,6 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
             },
             top: Node {
                 v: vs,
-                m: ms,
                 u0: 0.0,
                 u1: 1.0,
                 depth: 0,
@@ -253,25 +261,21 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         self.underflow_unit * f64::from(4 + 2 * depth)
     }
 
-    /// The error bound of each coefficient of `node`: `err_i = fac·m_i + tiny`.
-    fn error_terms(&self, node: &Node<S>) -> (f64, f64) {
-        // γ(k)·m* with m* ≤ m̂/(1−γ(k)); the factor (1 + 8ε) covers the roundings of this
-        // bound itself.
-        let fac = gamma_ratio_upper(node.ops as usize) * (1.0 + 8.0 * f64::EPSILON);
-        (fac, self.tiny(node.depth))
+    /// The error bound shared by every coefficient of `node`: `γ(k)·M + tiny`.
+    fn threshold(&self, node: &Node<S>) -> f64 {
+        // The factor (1 + 8ε) covers the roundings of this bound itself.
+        gamma_ratio_upper(node.ops as usize) * self.mag * (1.0 + 8.0 * f64::EPSILON)
+            + self.tiny(node.depth)
     }
 
     /// Certified signs of the node's coefficients (0 = not certain). The end coefficients of
     /// nodes touching `u = 0` (and `u = 1` when `w` is exact) are the values `p(t_min)`,
     /// `p(t_max)`, whose signs the caller certified directly.
     fn classify(&self, node: &Node<S>) -> Class {
-        let (fac, tiny) = self.error_terms(node);
-        let (v, m) = (node.v.at(), node.m.at());
+        let err = self.threshold(node);
+        let v = node.v.at();
         let n = self.n();
-        let sign = |i: usize| -> i8 {
-            let err = fac * m[i] + tiny;
-            i8::from(v[i] > err) - i8::from(-v[i] > err)
-        };
+        let sign = |i: usize| -> i8 { i8::from(v[i] > err) - i8::from(-v[i] > err) };
         let first = if node.u0 == 0.0 { self.s_min } else { sign(0) };
         let last = if node.u1 == 1.0 && self.w_exact {
             self.s_max
@@ -303,18 +307,14 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
     fn split(&self, node: Node<S>) -> (Node<S>, Node<S>) {
         let n = self.n();
         let mut lvs = node.v.clone();
-        let mut lms = node.m.clone();
         let mut rvs = node.v;
-        let mut rms = node.m;
         {
-            let (lv, lm, rv, rm) = (lvs.at_mut(), lms.at_mut(), rvs.at_mut(), rms.at_mut());
+            let (lv, rv) = (lvs.at_mut(), rvs.at_mut());
             for r in 1..=n {
                 for i in 0..=(n - r) {
                     rv[i] = (rv[i] + rv[i + 1]) * 0.5;
-                    rm[i] = (rm[i] + rm[i + 1]) * 0.5;
                 }
                 lv[r] = rv[0];
-                lm[r] = rm[0];
             }
         }
         let mid = 0.5 * (node.u0 + node.u1);
@@ -324,7 +324,6 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         (
             Node {
                 v: lvs,
-                m: lms,
                 u0: node.u0,
                 u1: mid,
                 depth,
@@ -332,7 +331,6 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
             },
             Node {
                 v: rvs,
-                m: rms,
                 u0: mid,
                 u1: node.u1,
                 depth,
@@ -437,7 +435,6 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
     fn take_top(&mut self) -> Node<S> {
         let empty = Node {
             v: S::zeroed(0),
-            m: S::zeroed(0),
             u0: 0.0,
             u1: 1.0,
             depth: 0,
@@ -627,15 +624,14 @@ const RECIP_BINOM: [[f64; RECIP_ROWS]; RECIP_ROWS] = {
     t
 };
 
-/// Divides `v[j]` (and `m[j]`) by `C(n, j)`; returns the roundings this adds on any path.
-fn binomial_row_into(n: usize, m: &mut [f64], v: &mut [f64]) -> u32 {
+/// Divides `v[j]` by `C(n, j)`; returns the roundings this adds on any path.
+fn binomial_row_into(n: usize, v: &mut [f64]) -> u32 {
     if n < RECIP_ROWS {
         // Multiplication by the rounded reciprocal: two roundings (the table entry and the
         // product), and no division in the hot path.
         let row = &RECIP_BINOM[n];
         for j in 0..=n {
             v[j] *= row[j];
-            m[j] *= row[j];
         }
         2
     } else if n <= 60 {
@@ -648,7 +644,6 @@ fn binomial_row_into(n: usize, m: &mut [f64], v: &mut [f64]) -> u32 {
             }
             let cf = c as f64;
             v[j] /= cf;
-            m[j] /= cf;
         }
         2
     } else {
@@ -659,7 +654,6 @@ fn binomial_row_into(n: usize, m: &mut [f64], v: &mut [f64]) -> u32 {
                 c = c * (n - j + 1) as f64 / j as f64;
             }
             v[j] /= c;
-            m[j] /= c;
         }
         2 * n as u32 + 1
     }
@@ -669,13 +663,12 @@ fn binomial_row_into(n: usize, m: &mut [f64], v: &mut [f64]) -> u32 {
 mod tests {
     use super::*;
     use crate::scalar::Rat;
-    use crate::univariate::{Poly, gamma};
+    use crate::univariate::Poly;
     use num_traits::Signed;
 
-    fn exact_bernstein(p: &Poly<f64>, a: f64, w: f64) -> Vec<Rat> {
+    fn exact_bernstein(p: &Poly<f64>, a: &Rat, w: &Rat) -> Vec<Rat> {
         // q(u) = p(a + w u) exactly, then the exact basis change.
-        let pr = p.to_rat().unwrap();
-        let q = pr.compose_affine(&Rat::from_float(a).unwrap(), &Rat::from_float(w).unwrap());
+        let q = p.to_rat().unwrap().compose_affine(a, w);
         let n = p.degree();
         let binom = |n: usize, k: usize| -> Rat {
             let mut c = Rat::from_integer(1.into());
@@ -698,23 +691,39 @@ mod tests {
     fn bernstein_error_bound_contains_exact_coefficients() {
         let p = Poly::new(vec![-1.3e3, 2.7, 0.41, -7.9, 1.0, 0.031]);
         let iso = BernsteinIsolator::<[f64; 6]>::new(p.coeffs(), -3.7, 11.3, 1, 1).unwrap();
-        let exact = exact_bernstein(&p, iso.a, iso.w);
-        let g = gamma(iso.top.ops as usize);
-        for (i, e) in exact.iter().enumerate() {
-            let err = g / (1.0 - g) * iso.top.m[i];
-            let diff = (Rat::from_float(iso.top.v[i]).unwrap() - e).abs();
-            assert!(
-                diff <= Rat::from_float(err).unwrap(),
-                "coefficient {i}: computed {} exact {} err bound {err}",
-                iso.top.v[i],
-                crate::scalar::rat_to_f64(e)
-            );
-        }
-        // The bound is not vacuous: well below the coefficient sizes.
-        assert!(
-            g * iso.top.m[2] < 1e-10 * iso.top.m[2].max(1.0),
-            "bound is tight"
+        let (a, w) = (
+            Rat::from_float(iso.a).unwrap(),
+            Rat::from_float(iso.w).unwrap(),
         );
+        // The top node, and the nodes reached by halving left, right, left.
+        let mut nodes = vec![iso.top.clone()];
+        let mut node = iso.top.clone();
+        for go_left in [true, false, true] {
+            let (l, r) = iso.split(node);
+            node = if go_left { l } else { r };
+            nodes.push(node.clone());
+        }
+        for node in &nodes {
+            let (u0, u1) = (
+                Rat::from_float(node.u0).unwrap(),
+                Rat::from_float(node.u1).unwrap(),
+            );
+            let exact = exact_bernstein(&p, &(&a + &w * &u0), &(&w * (&u1 - &u0)));
+            let err = iso.threshold(node);
+            for (i, e) in exact.iter().enumerate() {
+                let diff = (Rat::from_float(node.v[i]).unwrap() - e).abs();
+                assert!(
+                    diff <= Rat::from_float(err).unwrap(),
+                    "[{}, {}] coefficient {i}: computed {} exact {} bound {err}",
+                    node.u0,
+                    node.u1,
+                    node.v[i],
+                    crate::scalar::rat_to_f64(e)
+                );
+            }
+            // Not vacuous: far below the size of the coefficients.
+            assert!(err < 1e-11 * iso.mag, "bound {err} vs M {}", iso.mag);
+        }
     }
 
     #[test]

@@ -76,13 +76,15 @@ fn bisection(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refine
         s_lo,
         ..
     } = b;
+    let err = bracket_error_bound(p, lo, hi);
     for _ in 0..MAX_ITERATIONS {
         if narrow_enough(lo, hi, x_tol) {
             return Refined::Root(midpoint_or_lo(lo, hi));
         }
         let m = midpoint(lo, hi);
         stats.refine_evals += 1;
-        match certified_sign(p, m) {
+        let (_, s) = sign_with(p, m, horner(p, m), err);
+        match s {
             0 => return Refined::Stuck(Bracket::new(lo, hi, s_lo)),
             s if s == s_lo => lo = m,
             _ => hi = m,
@@ -129,6 +131,7 @@ fn illinois(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined
     } = b;
     let mut f_lo = if f_lo.is_nan() { horner(p, lo) } else { f_lo };
     let mut f_hi = if f_hi.is_nan() { horner(p, hi) } else { f_hi };
+    let err = bracket_error_bound(p, lo, hi);
     let delta = half_tol(x_tol);
     let mut kept = 0i8; // +1: lo moved last, −1: hi moved last
     let mut width_before = hi - lo;
@@ -156,7 +159,7 @@ fn illinois(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined
             x = midpoint(lo, hi);
         }
         stats.refine_evals += 1;
-        let (fx, s) = certified_value(p, x);
+        let (fx, s) = sign_with(p, x, horner(p, x), err);
         if s == 0 {
             let bracket = Bracket::new(lo, hi, s_lo);
             return match probe(p, bracket, x, delta, stats) {
@@ -206,19 +209,14 @@ fn newton(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined {
     };
     let mut step_old = hi - lo;
     let mut step = step_old;
+    let err = bracket_error_bound(p, lo, hi);
     for _ in 0..MAX_ITERATIONS {
         if narrow_enough(lo, hi, x_tol) {
             return Refined::Root(midpoint_or_lo(lo, hi));
         }
         stats.refine_evals += 1;
-        let (fx, dfx, err) = horner_with_derivative(p, x);
-        let (fx, s) = if fx > err {
-            (fx, 1)
-        } else if -fx > err {
-            (fx, -1)
-        } else {
-            certified_value(p, x)
-        };
+        let (fx, dfx) = horner_with_derivative(p, x);
+        let (fx, s) = sign_with(p, x, fx, err);
         if s == 0 {
             let bracket = Bracket::new(lo, hi, s_lo);
             return match probe(p, bracket, x, delta, stats) {
@@ -259,23 +257,43 @@ fn newton(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined {
     Refined::Stuck(Bracket::new(lo, hi, s_lo))
 }
 
+/// One Horner error bound valid at every `x` of `[lo, hi]`: the bound of
+/// [`horner_bounded`] is increasing in `|x|`, so its value at `max(|lo|, |hi|)` covers the
+/// bracket. Computed once per refinement, it leaves a plain Horner pass per trial point.
+fn bracket_error_bound(c: &[f64], lo: f64, hi: f64) -> f64 {
+    let (_, err) = horner_bounded(c, lo.abs().max(hi.abs()));
+    err
+}
+
+/// The sign of `p(x)` from a plain value `fx` and the bracket-wide bound `err`, falling back
+/// to the sharper certified tiers when that bound cannot decide.
+#[inline]
+fn sign_with(c: &[f64], x: f64, fx: f64, err: f64) -> (f64, i8) {
+    if fx > err {
+        (fx, 1)
+    } else if -fx > err {
+        (fx, -1)
+    } else {
+        certified_value(c, x)
+    }
+}
+
 /// `p(x)` by Horner's rule (a value for the secant, not a sign).
 #[inline]
 fn horner(c: &[f64], x: f64) -> f64 {
     c.iter().rev().fold(0.0, |v, &ci| v * x + ci)
 }
 
-/// `p(x)`, `p'(x)` and the error bound of `p(x)` from [`horner_bounded`].
+/// `p(x)` and `p'(x)` by Horner's rule.
 #[inline]
-fn horner_with_derivative(c: &[f64], x: f64) -> (f64, f64, f64) {
+fn horner_with_derivative(c: &[f64], x: f64) -> (f64, f64) {
     let mut d = 0.0;
     let mut v = 0.0;
     for &ci in c.iter().rev() {
         d = d * x + v;
         v = v * x + ci;
     }
-    let (_, err) = horner_bounded(c, x);
-    (v, d, err)
+    (v, d)
 }
 
 /// Finishes a bracket with exact signs: bisection on rationals of the stored polynomial.
