@@ -310,11 +310,11 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         let mut rvs = node.v;
         {
             let (lv, rv) = (lvs.at_mut(), rvs.at_mut());
-            for r in 1..=n {
+            for (r, l) in lv.iter_mut().enumerate().take(n + 1).skip(1) {
                 for i in 0..=(n - r) {
                     rv[i] = (rv[i] + rv[i + 1]) * 0.5;
                 }
-                lv[r] = rv[0];
+                *l = rv[0];
             }
         }
         let mid = 0.5 * (node.u0 + node.u1);
@@ -629,31 +629,29 @@ fn binomial_row_into(n: usize, v: &mut [f64]) -> u32 {
     if n < RECIP_ROWS {
         // Multiplication by the rounded reciprocal: two roundings (the table entry and the
         // product), and no division in the hot path.
-        let row = &RECIP_BINOM[n];
-        for j in 0..=n {
-            v[j] *= row[j];
+        for (x, r) in v.iter_mut().zip(&RECIP_BINOM[n]).take(n + 1) {
+            *x *= r;
         }
         2
     } else if n <= 60 {
         // Exact in u64: C(60, 30) ≈ 1.2e17 and the running product C(n, j−1)·(n − j + 1)
         // stays below 60·1.2e17 < 2^63. One rounding to f64, one for the quotient.
         let mut c: u64 = 1;
-        for j in 0..=n {
+        for (j, x) in v.iter_mut().enumerate().take(n + 1) {
             if j > 0 {
                 c = c * (n - j + 1) as u64 / j as u64;
             }
-            let cf = c as f64;
-            v[j] /= cf;
+            *x /= c as f64;
         }
         2
     } else {
         // Multiplicative recurrence in f64: two roundings per step for the binomial.
         let mut c = 1.0f64;
-        for j in 0..=n {
+        for (j, x) in v.iter_mut().enumerate().take(n + 1) {
             if j > 0 {
                 c = c * (n - j + 1) as f64 / j as f64;
             }
-            v[j] /= c;
+            *x /= c;
         }
         2 * n as u32 + 1
     }
