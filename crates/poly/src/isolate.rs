@@ -42,7 +42,7 @@ fn prepare(p: &Poly<f64>, t_min: f64, t_max: f64, x_tol: f64) -> Result<Range, R
     if t_min.is_nan() || t_max.is_nan() {
         return Err(RootError::NanBound);
     }
-    if x_tol.is_nan() || x_tol < 0.0 {
+    if x_tol.is_nan() || x_tol < 0.0 || x_tol.is_infinite() {
         return Err(RootError::InvalidTolerance);
     }
     if p.degree() == 0 || t_min >= t_max {

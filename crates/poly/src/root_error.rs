@@ -19,7 +19,7 @@ pub enum RootError {
     ZeroPolynomial,
     /// An interval bound is NaN (infinite bounds are accepted where documented).
     NanBound,
-    /// A tolerance is NaN or negative.
+    /// A tolerance is NaN, negative or infinite.
     InvalidTolerance,
 }
 
@@ -36,7 +36,9 @@ impl fmt::Display for RootError {
                 )
             }
             RootError::NanBound => write!(f, "an interval bound is NaN"),
-            RootError::InvalidTolerance => write!(f, "tolerance must be a non-negative number"),
+            RootError::InvalidTolerance => {
+                write!(f, "tolerance must be a finite non-negative number")
+            }
         }
     }
 }

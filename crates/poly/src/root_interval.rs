@@ -22,7 +22,10 @@ impl<T: PartialEq> RootInterval<T> {
 }
 
 impl RootInterval<f64> {
-    /// Width `hi − lo` (rounded).
+    /// Width `hi − lo`.
+    ///
+    /// # Accuracy
+    /// One rounding: within half an ulp of the true width.
     pub fn width(&self) -> f64 {
         self.hi - self.lo
     }

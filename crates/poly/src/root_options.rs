@@ -74,8 +74,9 @@ pub enum RefineMethod {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RootOptions {
-    /// Bound on `|returned − true root|` (absolute, in the variable's units). Zero asks for
-    /// the best `f64` answer (within one unit in the last place of the root).
+    /// Bound on `|returned − true root|` (absolute, in the variable's units); must be finite
+    /// and non-negative ([`RootError::InvalidTolerance`](crate::RootError) otherwise). Zero
+    /// asks for the best `f64` answer (within one unit in the last place of the root).
     pub x_tol: f64,
     /// How roots are isolated.
     pub isolation: IsolationMethod,

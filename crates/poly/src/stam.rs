@@ -94,6 +94,9 @@ impl StamSturm {
 
     /// `W(x)`: the number of `k` with `V_k(x)·V_{k+1}(x) < 0`. Unlike eq. 3.21 a zero value is
     /// not skipped: it breaks the chain, as in the original.
+    ///
+    /// # Accuracy
+    /// None promised: plain `f64` products of rounded values.
     pub fn sign_changes_at(&self, x: f64) -> usize {
         let mut f = self.value(0, x);
         let mut nb = 0;

@@ -104,11 +104,17 @@ impl QPoly {
 
 impl SturmSequence<Rat> {
     /// `σ(x)`: sign changes in `V₀(x), …, V_q(x)`, zeros omitted (seed eq. 3.21).
+    ///
+    /// # Exactness
+    /// Exact (integer evaluation of every member at the rational `x`).
     pub fn sign_changes_at(&self, x: &Rat) -> usize {
         count_changes(self.polys.iter().map(|v| int_sign_at(v, x)))
     }
 
     /// Sign changes at `−∞` (`to_plus = false`) or `+∞`.
+    ///
+    /// # Exactness
+    /// Exact (signs of the leading coefficients and parities of the degrees).
     pub fn sign_changes_at_infinity(&self, to_plus: bool) -> usize {
         count_changes(self.polys.iter().map(|v| sign_at_infinity(v, to_plus)))
     }
@@ -131,6 +137,9 @@ impl SturmSequence<Rat> {
     }
 
     /// The number of distinct real roots on the whole real line.
+    ///
+    /// # Exactness
+    /// Exact and certified, multiple roots counted once.
     pub fn count_real_roots(&self) -> usize {
         self.sign_changes_at_infinity(false)
             .saturating_sub(self.sign_changes_at_infinity(true))
@@ -138,6 +147,9 @@ impl SturmSequence<Rat> {
 
     /// The exact sign (−1, 0 or 1) of the square-free part `V₀` at `x`; it vanishes exactly at
     /// the distinct roots of the polynomial and changes sign across each of them.
+    ///
+    /// # Exactness
+    /// Exact.
     pub fn sign_of_square_free_at(&self, x: &Rat) -> i8 {
         int_sign_at(&self.polys[0], x)
     }
@@ -188,6 +200,10 @@ impl Poly<f64> {
 
 impl SturmSequence<f64> {
     /// `σ(x)` in floating point (zeros omitted); `x` may be ±∞.
+    ///
+    /// # Accuracy
+    /// Heuristic: each member is evaluated by plain Horner; a value that rounding pushed
+    /// across zero changes the count. No bound is attempted.
     pub fn sign_changes_at(&self, x: f64) -> usize {
         if x.is_infinite() {
             return count_changes(self.polys.iter().map(|v| f64_sign_at_infinity(v, x > 0.0)));

@@ -257,6 +257,11 @@ fn bad_input_gives_typed_errors() {
         "NaN tol"
     );
     assert_eq!(
+        p.real_roots(0.0, 1.0, f64::INFINITY),
+        Err(RootError::InvalidTolerance),
+        "infinite tol"
+    );
+    assert_eq!(
         p.real_roots(3.0, -3.0, 1e-9),
         Ok(vec![]),
         "reversed interval holds nothing"
