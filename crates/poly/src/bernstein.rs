@@ -304,17 +304,21 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
     }
 
     /// Halves a node with de Casteljau's algorithm at `u = 1/2`: returns (left, right).
+    #[allow(
+        clippy::needless_range_loop,
+        reason = "two arrays indexed together; with exact-size storage the range form unrolls"
+    )]
     fn split(&self, node: Node<S>) -> (Node<S>, Node<S>) {
         let n = self.n();
         let mut lvs = node.v.clone();
         let mut rvs = node.v;
         {
             let (lv, rv) = (lvs.at_mut(), rvs.at_mut());
-            for (r, l) in lv.iter_mut().enumerate().take(n + 1).skip(1) {
+            for r in 1..=n {
                 for i in 0..=(n - r) {
                     rv[i] = (rv[i] + rv[i + 1]) * 0.5;
                 }
-                *l = rv[0];
+                lv[r] = rv[0];
             }
         }
         let mid = 0.5 * (node.u0 + node.u1);
