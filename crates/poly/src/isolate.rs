@@ -84,10 +84,12 @@ impl Poly<f64> {
     ///
     /// # Accuracy
     /// Certified for the stored coefficients, whatever the rounding:
-    /// * the root `r` returned satisfies `|returned − r| ≤ x_tol` (absolute), or is within one
-    ///   `f64` spacing of `r` when `x_tol` is smaller than that;
-    /// * no root of the stored polynomial lies in `(t_min, r)`, and `r ∈ (t_min, t_max]`
-    ///   (a root exactly at `t_min` is excluded, one exactly at `t_max` included);
+    /// * let `ρ` be the smallest distinct real root of the stored polynomial in
+    ///   `(t_min, t_max]` (a root exactly at `t_min` is excluded, one exactly at `t_max`
+    ///   included); the value returned is within `x_tol` of `ρ` (absolute), or within one
+    ///   `f64` spacing of it when `x_tol` is smaller than that spacing;
+    /// * the returned value itself may lie up to `x_tol` outside `(t_min, t_max]` when `ρ` is
+    ///   that close to an end;
     /// * `None` means there is certainly no root in `(t_min, t_max]`.
     ///
     /// Multiple roots are found (a tangent ray's double root is a root); the multiplicity is
