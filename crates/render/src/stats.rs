@@ -93,10 +93,13 @@ impl TraceStats {
         self.primary_rays + self.shadow_rays + self.reflected_rays + self.refracted_rays
     }
 
-    /// Root queries that ended without a certified answer. `poly` reports none today: every
-    /// query it cannot settle in `f64` is redone exactly (`roots.exact_fallbacks`).
+    /// Root queries that ended without a certified answer: those `poly` refused (non-finite
+    /// coefficients from overflow, or a restriction that vanishes identically because the ray
+    /// lies in the surface). The ray then counts as missing that surface. Every other query is
+    /// certified (an `f64` sign `poly` cannot decide is redone exactly, see
+    /// `roots.exact_fallbacks`), so this should be 0.
     pub fn unresolved_roots(&self) -> u64 {
-        0
+        self.roots.rejected
     }
 }
 
@@ -232,7 +235,6 @@ impl fmt::Display for StatsReport<'_> {
             "  refinement fallbacks               {:>12}",
             r.refine_fallbacks
         )?;
-        writeln!(f, "  rejected (non-finite input)        {:>12}", r.rejected)?;
         writeln!(
             f,
             "  unresolved roots                   {:>12}",

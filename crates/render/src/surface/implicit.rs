@@ -43,9 +43,9 @@ pub trait ImplicitFn: Send + Sync + std::fmt::Debug {
     /// A box holding the surface, `None` if unbounded.
     fn bounds(&self) -> Option<Bounds3>;
 
-    /// A sphere `(centre, radius)` holding the surface, tested before the box when the shape
-    /// is rounder than its box (torus): rays passing the box corners are rejected without
-    /// building a polynomial.
+    /// A sphere `(centre, radius)` holding the surface, intersected before the box when the
+    /// shape is rounder than its box (torus): rays passing the box corners are rejected without
+    /// building a polynomial, and the root search covers only the part of the ray inside both.
     fn bounding_sphere(&self) -> Option<(DVec3, f64)> {
         None
     }
@@ -81,13 +81,16 @@ impl<F: ImplicitFn> Implicit<F> {
         &self.f
     }
 
-    /// The root tolerance in `t` for a ray with direction `d` (see [`ROOT_X_TOL_REL`]).
+    /// The root tolerance in `t` for a ray with direction `d` (see [`ROOT_X_TOL_REL`]): relative
+    /// to the box diagonal, or for an unbounded surface to the search length (when finite) or
+    /// else to the origin's distance from the coordinate origin plus one unit. Always finite.
     fn x_tol(&self, d: DVec3, o: DVec3, range_len: f64) -> f64 {
         let size = match &self.bounds {
-            Some(b) => b.diagonal() / d.length(),
-            None => range_len + o.abs().max_element() / d.length(),
+            Some(b) => b.diagonal(),
+            None if range_len.is_finite() => range_len * d.length(),
+            None => o.abs().max_element() + 1.0,
         };
-        ROOT_X_TOL_REL * size
+        ROOT_X_TOL_REL * size / d.length()
     }
 }
 
@@ -101,12 +104,25 @@ pub(crate) fn smallest_root_in(ws: &mut Workspace, lo: f64, hi: f64, x_tol: f64)
     root
 }
 
-/// True when the line of `ray` stays farther than `r` from `c` (with a relative margin of
-/// `1e-9` on `r²` against rounding: a near-tangent line is never rejected).
-fn misses_sphere(ray: &Ray, c: DVec3, r: f64) -> bool {
+/// Relative margin by which [`sphere_segment`] widens the bounding sphere and the interval, far
+/// above the few roundings of the computation, so a ray touching the sphere is never clipped.
+const SPHERE_CLIP_MARGIN: f64 = 1e-9;
+
+/// The parameter interval where the line of `ray` is inside the sphere `(c, r)`, slightly
+/// enlarged ([`SPHERE_CLIP_MARGIN`]), or `None` when the line passes outside it.
+fn sphere_segment(ray: &Ray, c: DVec3, r: f64) -> Option<Range<f64>> {
+    let a = ray.dir.length_squared();
     let oc = ray.origin - c;
-    let cross = oc.cross(ray.dir).length_squared();
-    cross > r * r * ray.dir.length_squared() * (1.0 + 1e-9)
+    let b = oc.dot(ray.dir) / a; // half the linear coefficient, over a
+    let r2 = r * r * (1.0 + SPHERE_CLIP_MARGIN);
+    // Distance² from c to the line, computed without cancellation: |oc × d|² / |d|².
+    let d2 = oc.cross(ray.dir).length_squared() / a;
+    if d2 > r2 {
+        return None;
+    }
+    let half = ((r2 - d2) / a).sqrt();
+    let pad = SPHERE_CLIP_MARGIN * (b.abs() + half) + f64::MIN_POSITIVE;
+    Some((-b - half - pad)..(-b + half + pad))
 }
 
 /// Clips `t_range` to `bounds` (counting a rejection for `kind`), or passes it through for an
@@ -139,12 +155,18 @@ impl<F: ImplicitFn> Implicit<F> {
         ws: &mut Workspace,
         any_root: bool,
     ) -> Option<(f64, DVec3)> {
-        if let Some((c, r)) = self.f.bounding_sphere()
-            && misses_sphere(ray, c, r)
-        {
-            ws.stats.per_kind[self.f.kind().index()].bbox_rejects += 1;
-            return None;
-        }
+        let t_range = match self.f.bounding_sphere() {
+            None => t_range,
+            Some((c, r)) => match sphere_segment(ray, c, r) {
+                Some(s) if s.start < t_range.end && s.end > t_range.start => {
+                    t_range.start.max(s.start)..t_range.end.min(s.end)
+                }
+                _ => {
+                    ws.stats.per_kind[self.f.kind().index()].bbox_rejects += 1;
+                    return None;
+                }
+            },
+        };
         let seg = clip(self.bounds.as_ref(), ray, t_range, ws, self.f.kind())?;
         // Move the origin to where the ray enters the box (or to the range start): the
         // restricted polynomial is then built from small numbers near the surface, which is
@@ -228,4 +250,57 @@ pub(crate) fn gradient_normal(f: &Poly3, degree: u32, p: DVec3) -> Option<(Optio
     let f_err = gamma(degree as usize + 3) * e.f_abs;
     let dist = (e.f.abs() + f_err) / glen;
     Some((Some(g / glen), DVec3::splat(dist)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::surface::{Plane, Sphere};
+
+    #[test]
+    fn unbounded_plane_is_hit_over_an_infinite_range() {
+        let plane = Implicit::new(Plane::new(DVec3::new(0.0, 0.0, -1.5), DVec3::Z), None);
+        let mut ws = Workspace::new();
+        let ray = Ray::new(DVec3::new(0.3, 0.2, 4.0), DVec3::new(0.1, 0.0, -1.0));
+        let hit = plane
+            .intersect(&ray, 0.0..f64::INFINITY, &mut ws)
+            .expect("hits the floor");
+        assert!((hit.t - 5.5).abs() < 1e-12, "t = {}", hit.t);
+        assert!(
+            plane.occluded(&ray, 0.0..f64::INFINITY, &mut ws),
+            "blocks over (0, ∞)"
+        );
+        assert!(!plane.occluded(&ray, 0.0..5.0, &mut ws), "not before t = 5");
+        let up = Ray::new(ray.origin, DVec3::Z);
+        assert_eq!(
+            plane.intersect(&up, 0.0..f64::INFINITY, &mut ws),
+            None,
+            "moving away"
+        );
+        assert_eq!(ws.stats.roots.rejected, 0, "no query refused");
+    }
+
+    #[test]
+    fn bounding_sphere_segment_contains_the_sphere_chord() {
+        let ray = Ray::new(DVec3::new(-10.0, 0.5, 0.0), DVec3::new(2.0, 0.0, 0.0));
+        let s = sphere_segment(&ray, DVec3::ZERO, 1.0).expect("crosses");
+        let half = (1.0f64 - 0.25).sqrt();
+        assert!(
+            s.start <= (10.0 - half) / 2.0 && s.end >= (10.0 + half) / 2.0,
+            "{s:?}"
+        );
+        assert!(s.end - s.start < half + 1e-6, "and is tight: {s:?}");
+        let miss = Ray::new(DVec3::new(-10.0, 1.01, 0.0), DVec3::X);
+        assert_eq!(
+            sphere_segment(&miss, DVec3::ZERO, 1.0),
+            None,
+            "passes outside"
+        );
+        let sphere = Implicit::new(Sphere::new(DVec3::ZERO, 1.0), None);
+        assert_eq!(
+            sphere.bounds().map(|b| b.max),
+            Some(DVec3::ONE),
+            "sphere box"
+        );
+    }
 }
