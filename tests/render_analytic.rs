@@ -23,8 +23,10 @@ fn look_at(eye: DVec3, fov: f64) -> CameraSpec {
 }
 
 fn torus_scene() -> Scene {
-    let mut scene = Scene::default();
-    scene.camera = look_at(DVec3::new(0.0, -8.0, 5.0), 50.0);
+    let mut scene = Scene {
+        camera: look_at(DVec3::new(0.0, -8.0, 5.0), 50.0),
+        ..Scene::default()
+    };
     scene.world.background = DVec3::splat(0.2);
     scene.lights.push(Light {
         source: DVec3::new(5.0, -5.0, 10.0),
@@ -53,8 +55,10 @@ fn torus_scene() -> Scene {
 #[test]
 fn sphere_coverage_matches_projected_disc() {
     let (size, fov, dist, r) = (96u32, 40.0f64, 10.0f64, 2.0f64);
-    let mut scene = Scene::default();
-    scene.camera = look_at(DVec3::new(0.0, -dist, 0.0), fov);
+    let mut scene = Scene {
+        camera: look_at(DVec3::new(0.0, -dist, 0.0), fov),
+        ..Scene::default()
+    };
     scene.objects.push(Object::new(ShapeKind::Sphere {
         center: DVec3::ZERO,
         radius: r,
