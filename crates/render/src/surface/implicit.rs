@@ -10,7 +10,7 @@ use poly::{Poly, RootOptions};
 
 use super::{Hit, Surface, SurfaceGeometry, SurfaceKind};
 use crate::geometry::{Bounds3, Ray, gamma};
-use crate::poly3::{Poly3, RestrictScratch};
+use crate::poly3::{Eval3, Poly3, RestrictScratch};
 use crate::workspace::Workspace;
 
 /// Root tolerance relative to the extent of the search: a nearest-hit query asks `poly` for
@@ -43,6 +43,13 @@ pub trait ImplicitFn: Send + Sync + std::fmt::Debug {
     /// A box holding the surface, `None` if unbounded.
     fn bounds(&self) -> Option<Bounds3>;
 
+    /// `F`, `∇F` and their rounding-error scales at `p` ([`Poly3::eval_grad`]); shapes with a
+    /// cheaper factored form (torus) override it, with sums that bound *their* evaluation's
+    /// rounding in the same way.
+    fn eval_grad(&self, p: DVec3) -> Eval3 {
+        self.poly().eval_grad(p)
+    }
+
     /// A sphere `(centre, radius)` holding the surface, intersected before the box when the
     /// shape is rounder than its box (torus): rays passing the box corners are rejected without
     /// building a polynomial, and the root search covers only the part of the ray inside both.
@@ -61,6 +68,8 @@ pub trait ImplicitFn: Send + Sync + std::fmt::Debug {
 pub struct Implicit<F> {
     f: F,
     degree: u32,
+    /// Diagonal of `bounds` (0 when unbounded).
+    diagonal: f64,
     bounds: Option<Bounds3>,
 }
 
@@ -73,7 +82,13 @@ impl<F: ImplicitFn> Implicit<F> {
             (Some(a), Some(b)) => Some(a.intersection(&b)),
             (a, b) => a.or(b),
         };
-        Implicit { f, degree, bounds }
+        let diagonal = bounds.map_or(0.0, |b| b.diagonal());
+        Implicit {
+            f,
+            degree,
+            diagonal,
+            bounds,
+        }
     }
 
     /// The wrapped function.
@@ -86,7 +101,7 @@ impl<F: ImplicitFn> Implicit<F> {
     /// else to the origin's distance from the coordinate origin plus one unit. Always finite.
     fn x_tol(&self, d: DVec3, o: DVec3, range_len: f64) -> f64 {
         let size = match &self.bounds {
-            Some(b) => b.diagonal(),
+            Some(_) => self.diagonal,
             None if range_len.is_finite() => range_len * d.length(),
             None => o.abs().max_element() + 1.0,
         };
@@ -94,12 +109,23 @@ impl<F: ImplicitFn> Implicit<F> {
     }
 }
 
-/// The smallest root of the polynomial held in `ws.coeffs` in `(lo, hi]` (`hi` may be
-/// infinite), found by `poly`'s certified query; `None` also for a polynomial that vanishes
-/// identically along the ray (the ray lies in the surface).
+/// The smallest root of the polynomial held in `ws.coeffs` in `(lo, hi]`, found by `poly`'s
+/// certified query; `None` also for a polynomial that vanishes identically along the ray (the
+/// ray lies in the surface). An infinite `hi` (unbounded surfaces) is first replaced by
+/// Cauchy's bound `1 + max|cᵢ/cₙ|`, widened by `4ε` for its rounding: every root lies below it,
+/// and the solver then skips its own (costlier, `powf`-based) bound.
 pub(crate) fn smallest_root_in(ws: &mut Workspace, lo: f64, hi: f64, x_tol: f64) -> Option<f64> {
     let p = Poly::new(std::mem::take(&mut ws.coeffs));
-    let root = p.smallest_root_with(lo, hi, &RootOptions::new(x_tol), &mut ws.stats.roots);
+    let hi = if hi.is_finite() {
+        Some(hi)
+    } else if p.degree() == 0 {
+        // A non-zero constant has no root; the zero polynomial is refused by the solver.
+        (p.is_zero()).then_some(hi)
+    } else {
+        p.cauchy_bound().map(|b| b * (1.0 + 4.0 * f64::EPSILON))
+    };
+    let root = hi
+        .and_then(|hi| p.smallest_root_with(lo, hi, &RootOptions::new(x_tol), &mut ws.stats.roots));
     ws.coeffs = p.into_coeffs();
     root
 }
@@ -212,13 +238,14 @@ impl<F: ImplicitFn> Surface for Implicit<F> {
 
     fn shading(&self, hit: &Hit) -> SurfaceGeometry {
         let p = hit.local;
-        let (normal, p_err) = gradient_normal(self.f.poly(), self.degree, p).unwrap_or_else(|| {
-            let size = self
-                .bounds
-                .map_or(0.0, |b| b.diagonal())
-                .max(p.abs().max_element());
-            (None, DVec3::splat(SINGULAR_P_ERR_REL * size))
-        });
+        let (normal, p_err) =
+            gradient_normal(self.f.eval_grad(p), self.degree).unwrap_or_else(|| {
+                let size = self
+                    .bounds
+                    .map_or(0.0, |b| b.diagonal())
+                    .max(p.abs().max_element());
+                (None, DVec3::splat(SINGULAR_P_ERR_REL * size))
+            });
         SurfaceGeometry {
             p,
             p_err,
@@ -238,8 +265,7 @@ impl<F: ImplicitFn> Surface for Implicit<F> {
 /// stored point, so it covers the root tolerance, the rounding of the restricted coefficients
 /// and of `p = o + s·d` together. It is a first-order bound: valid where `F` is close to
 /// linear over that distance, which holds away from singular points.
-pub(crate) fn gradient_normal(f: &Poly3, degree: u32, p: DVec3) -> Option<(Option<DVec3>, DVec3)> {
-    let e = f.eval_grad(p);
+pub(crate) fn gradient_normal(e: Eval3, degree: u32) -> Option<(Option<DVec3>, DVec3)> {
     let g = e.grad;
     let g_err = e.grad_abs * gamma(degree as usize + 2);
     let glen = g.length();
