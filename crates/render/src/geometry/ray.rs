@@ -34,53 +34,20 @@ impl Ray {
 
 /// Moves a hit point `p`, known to within the componentwise error box `p_err`, off the surface
 /// with unit normal `n` to the side that `w` points to, so that a ray leaving along `w` starts
-/// on the correct side of the surface (pbrt-v4 `OffsetRayOrigin`).
+/// on the correct side of the surface (after pbrt-v4 `OffsetRayOrigin`).
 ///
 /// # Accuracy
-/// The offset along `n` is `|n|·p_err`, the largest extent of the error box along the normal,
-/// so the returned origin lies outside the box of possible true hit points, on `w`'s side of
-/// the tangent plane. It does not guard against a surface that curves back within that
-/// distance; the error boxes are a few ulps, far below any curvature radius the scenes use.
+/// The offset along `n` is `d = |n|·p_err`, the largest extent of the error box along the
+/// normal, enlarged to `d' = d + 2ε(|p|∞ + d)`. Rounding the sum `p + d'n` moves the point along
+/// `n` by at most `(ε/2)·|n|₁·|p + d'n|∞ ≤ (√3/2)·ε(|p|∞ + d')`, less than the enlargement, so
+/// the returned origin lies outside the box of possible true hit points, on `w`'s side of the
+/// tangent plane (pbrt rounds each component away instead; this bound avoids the bit
+/// manipulation). It does not guard against a surface that curves back within that distance;
+/// the error boxes are a few ulps, far below any curvature radius the scenes use.
 pub fn offset_ray_origin(p: DVec3, p_err: DVec3, n: DVec3, w: DVec3) -> DVec3 {
     let d = n.abs().dot(p_err);
-    let mut offset = n * d;
-    if w.dot(n) < 0.0 {
-        offset = -offset;
-    }
-    let po = p + offset;
-    // Round away from p so the rounding of the addition cannot undo the offset.
-    DVec3::new(
-        next_away(po.x, offset.x),
-        next_away(po.y, offset.y),
-        next_away(po.z, offset.z),
-    )
-}
-
-/// The next float after `x` in the direction of `towards_sign` (unchanged for zero).
-fn next_away(x: f64, towards_sign: f64) -> f64 {
-    if towards_sign > 0.0 {
-        next_up(x)
-    } else if towards_sign < 0.0 {
-        -next_up(-x)
-    } else {
-        x
-    }
-}
-
-/// The smallest float greater than `x` (finite `x`).
-fn next_up(x: f64) -> f64 {
-    if x.is_nan() || x == f64::INFINITY {
-        return x;
-    }
-    if x == 0.0 {
-        return f64::from_bits(1);
-    }
-    let bits = x.to_bits();
-    if x > 0.0 {
-        f64::from_bits(bits + 1)
-    } else {
-        f64::from_bits(bits - 1)
-    }
+    let d = d + 2.0 * f64::EPSILON * (p.abs().max_element() + d);
+    if w.dot(n) < 0.0 { p - n * d } else { p + n * d }
 }
 
 #[cfg(test)]
@@ -101,9 +68,14 @@ mod tests {
         );
         assert!(down.z < p.z - 1e-9 * 0.999, "moved below: {}", p.z - down.z);
         assert_eq!(up.x, p.x, "no motion along a zero offset component");
+        // A zero error box still moves off a point far from the origin by more than rounding.
+        let far = DVec3::new(1e6, -3e5, 7.0);
+        let n = DVec3::new(0.6, 0.0, 0.8);
+        let q = offset_ray_origin(far, DVec3::ZERO, n, n);
         assert!(
-            next_up(1.0) > 1.0 && next_up(-1.0) > -1.0,
-            "next_up increases"
+            (q - far).dot(n) > 0.0,
+            "strictly on w's side: {:e}",
+            (q - far).dot(n)
         );
     }
 }
