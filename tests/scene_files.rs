@@ -202,3 +202,17 @@ fn stam_and_barth_equations_expand_to_the_papers_polynomials() {
         "clipped to the radius-2 box"
     );
 }
+
+#[test]
+fn unreadable_file_names_the_path_and_the_reason() {
+    let missing = scenes_dir().join("no-such.scene");
+    let err = load(&missing).expect_err("no such file");
+    assert_eq!(
+        err.to_string(),
+        format!("cannot read {}", missing.display()),
+        "message"
+    );
+    let source = std::error::Error::source(&err).expect("the io error is the source");
+    assert!(source.to_string().contains("No such file"), "{source}");
+    assert!(err.span().is_none(), "no place in a text");
+}

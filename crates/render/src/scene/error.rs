@@ -41,8 +41,9 @@ impl fmt::Display for Span {
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum SceneError {
-    /// The scene file itself could not be read ([`crate::scene::load`] only).
-    #[error("cannot read {}: {source}", path.display())]
+    /// The scene file itself could not be read ([`crate::scene::load`] only). The reason is
+    /// the error's `source()` (print the chain, e.g. `anyhow`'s `{:#}`, to see it).
+    #[error("cannot read {}", path.display())]
     Read {
         /// The path that was opened.
         path: PathBuf,
