@@ -9,7 +9,7 @@ use rand_chacha::ChaCha8Rng;
 use render::geometry::{Ray, offset_ray_origin};
 use render::glam::DVec3;
 use render::scene::{CameraSpec, Illumination, Light, LookAtCamera, Object, Scene, ShapeKind};
-use render::surface::{Implicit, Sphere, Surface, Torus, Transformed};
+use render::surface::{Algebraic, Implicit, Sphere, Superquadric, Surface, Torus, Transformed};
 use render::whitted::nearest_hit;
 use render::{Camera, Poly3, PreparedScene, RenderSettings, Workspace, render};
 
@@ -196,6 +196,25 @@ fn spawned_rays_do_not_reintersect() {
             2.5,
         ),
         (
+            // Stam's quartic (Annexe B `Polynomial`) through the general restriction.
+            "algebraic",
+            Box::new(Implicit::new(
+                Algebraic::new(stam_quartic()),
+                Some(stam_box()),
+            )),
+            6.0,
+        ),
+        (
+            "superquadric p=4",
+            Box::new(Superquadric::new(DVec3::new(1.0, 2.0, 0.5), 4)),
+            2.3,
+        ),
+        (
+            "superquadric p=5",
+            Box::new(Superquadric::new(DVec3::new(1.0, 2.0, 0.5), 5)),
+            2.3,
+        ),
+        (
             "transformed torus",
             Box::new(Transformed::new(
                 Implicit::new(Torus::new(2.0, 0.5), None),
@@ -243,6 +262,19 @@ fn spawned_rays_do_not_reintersect() {
         }
         assert!(hits > 300, "{name}: enough hits to mean something ({hits})");
     }
+}
+
+/// Stam's torus `(x²+y²−1)(x²+y²−9) + 15z²` as a general polynomial.
+fn stam_quartic() -> Poly3 {
+    let (x, y, z) = (Poly3::x(), Poly3::y(), Poly3::z());
+    let r2 = &(&x * &x) + &(&y * &y);
+    let a = &r2 - &Poly3::constant(1.0);
+    let b = &r2 - &Poly3::constant(9.0);
+    &(&a * &b) + &(&(&z * &z) * 15.0)
+}
+
+fn stam_box() -> render::geometry::Bounds3 {
+    render::geometry::Bounds3::new(DVec3::new(-3.1, -3.1, -1.1), DVec3::new(3.1, 3.1, 1.1))
 }
 
 fn random_unit(rng: &mut ChaCha8Rng) -> DVec3 {
