@@ -54,7 +54,8 @@ pub struct KindStats {
     pub shadow_tests: u64,
     /// Occlusion queries that found a blocker.
     pub occlusions: u64,
-    /// Queries rejected by the bounding box before any polynomial was built.
+    /// Queries rejected by a bounding volume (the box, or a torus's bounding sphere) before
+    /// any polynomial was built.
     pub bbox_rejects: u64,
 }
 

@@ -1,1 +1,0 @@
-//! Holder crate for the workspace's benchmarks and report binaries.
