@@ -615,10 +615,7 @@ mod tests {
         let e = f.eval_grad(q);
         assert!((e.f - f.eval(q)).abs() < 1e-12, "one-pass value");
         for (k, gk) in g.iter().enumerate() {
-            assert!(
-                (e.grad[k] - gk.eval(q)).abs() < 1e-12,
-                "one-pass ∂F/∂x{k}"
-            );
+            assert!((e.grad[k] - gk.eval(q)).abs() < 1e-12, "one-pass ∂F/∂x{k}");
             assert!(
                 (e.grad_abs[k] - gk.eval_abs(q)).abs() < 1e-12,
                 "one-pass |∂F/∂x{k}|"
