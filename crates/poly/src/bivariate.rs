@@ -359,6 +359,14 @@ impl<T: Scalar> BiPoly<T> {
         out
     }
 
+    /// `p ← c · p` in place (no allocation).
+    pub fn scale_assign(&mut self, c: &T) {
+        for a in &mut self.coeffs {
+            *a = a.clone() * c;
+        }
+        self.normalize();
+    }
+
     /// `p / lc(p)`, so the leading coefficient is exactly one (article §3 def. 1 takes the
     /// leading coefficient to be 1); zero stays zero.
     pub fn make_monic(&self) -> Self {

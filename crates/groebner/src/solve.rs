@@ -1,0 +1,781 @@
+//! Solving `F1(u, v) = F2(u, v) = 0` in a box: eliminate `v` (Gröbner basis or resultant),
+//! find the real roots of the `u`-polynomial with `poly`, back-substitute for `v`, polish on the
+//! original equations and verify (article §4.3–4.4; `Roots`, `VPol`, `VRoots` in `ray3.c`).
+//! See `paper-notes/groebner.md` §5 and `paper-notes/resultant.md` §3.
+
+use poly::{BiPoly, Poly, Scalar};
+
+use crate::basis::Basis;
+use crate::buchberger::{buchberger_tracked, reduce_tracked};
+use crate::error::Error;
+use crate::resultant::{bezout_resultant_v, sylvester_resultant_v};
+use crate::roots::SolveScalar;
+use crate::stam::stam_tracked;
+use crate::tracked::Tracked;
+
+/// Default [`SolveOptions::x_tol`]: roots are located to `1e-10` in `u` and `v` (a Bézier
+/// patch spans `[0, 1]²`, so this is 1e-10 of the patch's parameter width).
+pub const DEFAULT_X_TOL: f64 = 1e-10;
+
+/// Default [`SolveOptions::f_tol_rel`], `2⁻³⁰ ≈ 9.3e-10`.
+///
+/// A true root, polished by Newton's method on `F1`, `F2`, leaves a residual near the
+/// evaluation round-off `γ(2(deg_u + deg_v) + 2)·A ≈ 1.6e-15·A` for a bicubic (`A` the sum of
+/// the absolute values of the terms at the point). Near a tangency (a double root) the residual
+/// only falls quadratically with the position error, so the margin is wide: 2⁻³⁰ accepts
+/// tangential hits located to about `√(2⁻³⁰) ≈ 3e-5` and rejects a candidate whose curves are
+/// apart by more. Extraneous candidates (a `u`-root whose common `v` is complex or at infinity)
+/// have residuals of order `A` and fail by many orders of magnitude.
+pub const DEFAULT_F_TOL_REL: f64 = 1.0 / (1u64 << 30) as f64;
+
+/// Relative size below which a coefficient of `g(u_r, v)` counts as vanished, `2⁻²⁶ ≈ 1.5e-8`
+/// (about `√ε`).
+///
+/// `u_r` is known to `x_tol`, so a coefficient `c_j(u)` that is exactly zero at the true root
+/// evaluates to about `c_j'(u)·x_tol`, relative `deg·x_tol`, far above `ε`; `√ε` leaves room
+/// for `x_tol` up to ~1e-9. Declaring a small coefficient zero is harmless here: every `v`
+/// candidate is verified on `F1`, `F2`, and a leading coefficient this small only carries roots
+/// of size ≳ 1/`VANISH_REL`, far outside the box.
+const VANISH_REL: f64 = 1.0 / (1u64 << 26) as f64;
+
+/// Relative size of `|p(c)|` at a critical point `c` below which `c` is treated as a possible
+/// double root of the eliminant, `2⁻²⁶ ≈ 1.5e-8` (about `√ε`): the rounding of a degree-18
+/// eliminant's coefficients leaves `|p(c)|` at a double root near `γ(k)` times the size of its
+/// terms, many orders below this, while the margin costs only spurious candidates, which the
+/// residual test rejects (see `near_double_roots`).
+const NEAR_DOUBLE_REL: f64 = 1.0 / (1u64 << 26) as f64;
+
+/// Newton iterations used to polish a candidate on the original equations.
+///
+/// Candidates start within `x_tol` (or the eliminant's conditioning) of the root, so one step
+/// reaches round-off for simple roots; the others cover slow, linear convergence near
+/// tangencies. A step is kept only if it lowers the residual.
+const NEWTON_STEPS: usize = 4;
+
+/// Largest Newton step, relative to the box's size: a larger step means the candidate was not
+/// near a root of this system, and polishing must not jump to a different root.
+const NEWTON_MAX_STEP_REL: f64 = 1e-3;
+
+/// How `v` is eliminated.
+///
+/// All four are exact over `Rat`. Over `f64` they differ sharply: Gröbner elimination is a
+/// long chain of cancellations (a polynomial remainder sequence in `u`), and on planted-root
+/// systems (the crate's property tests) it found every root while the eliminant had degree
+/// ≤ 6 but only about half at degree 10–11 and almost none at degree 17, whatever the zero rule —
+/// the instability Stam reports (article §5). The resultants are determinants of matrices of
+/// low-degree coefficients and found every planted root up to degree 17 in the same runs.
+/// Hence the default, [`Method::BezoutResultant`]; use the Gröbner methods in `f64` only for
+/// low-degree systems, or in exact mode.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Method {
+    /// Stam's simplified two-polynomial Gröbner loop ([`stam_basis`](crate::stam_basis)).
+    Stam,
+    /// Buchberger's algorithm and the reduced basis ([`buchberger`](crate::buchberger)).
+    Buchberger,
+    /// Kajiya's approach: `Res_v(F1, F2)` by Sylvester's matrix
+    /// ([`sylvester_resultant_v`](crate::sylvester_resultant_v)).
+    Resultant,
+    /// As [`Method::Resultant`] with Bézout's smaller matrix
+    /// ([`bezout_resultant_v`](crate::bezout_resultant_v)): 3 × 3 instead of 6 × 6 for a
+    /// bicubic. The default.
+    #[default]
+    BezoutResultant,
+}
+
+/// Options of [`solve`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolveOptions {
+    /// The elimination method.
+    pub method: Method,
+    /// The `u`-interval searched (closed). Default `[0, 1]`.
+    pub u_range: [f64; 2],
+    /// The `v`-interval searched (closed). Default `[0, 1]`.
+    pub v_range: [f64; 2],
+    /// Tolerance on root positions (absolute, in `u` and `v` units): `u`-roots are refined to
+    /// it, the box is widened by it (so a root on a patch edge is not lost to round-off), and
+    /// the residual test allows for it. Default [`DEFAULT_X_TOL`].
+    pub x_tol: f64,
+    /// Relative residual accepted at a root, see [`Root`] and [`DEFAULT_F_TOL_REL`].
+    pub f_tol_rel: f64,
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        SolveOptions {
+            method: Method::default(),
+            u_range: [0.0, 1.0],
+            v_range: [0.0, 1.0],
+            x_tol: DEFAULT_X_TOL,
+            f_tol_rel: DEFAULT_F_TOL_REL,
+        }
+    }
+}
+
+/// A verified common root `(u, v)`.
+///
+/// Verified means: for both `k = 1, 2`,
+/// `|F_k(u, v)| ≤ f_tol_rel · A_k(u, v) + (|∂F_k/∂u| + |∂F_k/∂v|) · x_tol`,
+/// where `A_k(u, v) = Σ|a_ij||u|^i|v|^j` is the size of `F_k`'s terms at the point (the scale of
+/// its evaluation round-off) and the gradient term allows for the position tolerance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Root {
+    /// The `u` coordinate.
+    pub u: f64,
+    /// The `v` coordinate.
+    pub v: f64,
+}
+
+/// What the elimination says about the complex common roots (article Theorems 1–3).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Verdict {
+    /// No common root at all, real or complex (`1 ∈ G`, Theorem 1; or a non-zero constant
+    /// resultant): the ray misses.
+    NoCommonRoot,
+    /// Finitely many common roots; the real ones in the box are in [`Solution::roots`].
+    Finite,
+    /// The curves share a whole component (infinitely many common roots: the ray runs inside
+    /// the surface, e.g. along a ruling); no points are reported.
+    Infinite,
+}
+
+/// Per-solve statistics (the article's table reports the first three per image, §5).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct SolveStats {
+    /// Number of basis elements (Gröbner methods); 0 for the resultant methods.
+    pub basis_size: usize,
+    /// Degree of the univariate polynomial in `u` (eliminant or resultant); 0 if none.
+    pub u_degree: usize,
+    /// `v`-degree of the first polynomial substituted into (the basis element of lowest
+    /// positive `Deg_v`, article §4.4; `min Deg_v(F1, F2)` for resultants); 0 if none.
+    pub v_degree: usize,
+    /// Exact mode only: the largest coefficient, in bits, of the basis elements or resultant,
+    /// each scaled to a primitive integer polynomial (coprime integer coefficients).
+    pub coeff_bits: Option<u64>,
+    /// Real roots of the `u`-polynomial in the (widened) `u`-range.
+    pub u_roots: usize,
+    /// `(u, v)` candidates rejected by the residual test (extraneous factors, complex `v`).
+    pub rejected: usize,
+}
+
+/// The outcome of [`solve`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Solution {
+    /// Verified roots in the box, sorted by `u` then `v`.
+    pub roots: Vec<Root>,
+    /// What the algebra says about all complex roots.
+    pub verdict: Verdict,
+    /// Statistics of this solve.
+    pub stats: SolveStats,
+}
+
+/// Solves `F1(u, v) = F2(u, v) = 0` for the real roots in `u_range × v_range`.
+///
+/// 1. Eliminate `v` with `opts.method`: the `u`-eliminant of a Gröbner basis (Theorem 3) or the
+///    resultant `Res_v(F1, F2)`. `1 ∈ G`, or a non-zero constant resultant, means no common
+///    root (Theorem 1).
+/// 2. Real roots `u_r` of that polynomial in the `u`-range widened by `x_tol`, by
+///    `poly`'s certified isolation and refinement (exact rational isolation in exact mode).
+/// 3. For each `u_r`, candidates `v`: the real roots in the widened `v`-range of the first of
+///    the basis elements involving `v` (lowest `Deg_v` first, then `F1` and `F2`; for
+///    resultants `F1`, `F2`) that does not vanish identically at `u_r`. The roots of the common
+///    part `gcd(F1(u_r, ·), F2(u_r, ·))` are among them, and the basis element is not assumed
+///    to be linear in `v` (shape form fails, e.g. on the teapot rim).
+/// 4. Each candidate is polished by Newton's method on `F1`, `F2` and kept if it passes the
+///    residual test of [`Root`] and lies in the widened box; duplicates closer than `4·x_tol`
+///    are merged. This is where extraneous factors (a `u`-root with only complex `v`, the
+///    factor `u^k` of a resultant when both leading coefficients in `v` vanish) are rejected.
+///
+/// # Accuracy
+/// Roots returned satisfy the residual test of [`Root`]; for a simple root (transversal
+/// intersection) the position error is then about the residual divided by the smallest singular
+/// value of the Jacobian. Not promised: tangential (double) roots may be reported once, or
+/// missed when the residual stays above the test; two roots closer than `4·x_tol` are merged.
+/// Over `f64` the elimination is a heuristic (see the crate's zero rule): a root is lost if
+/// round-off moves the eliminant's root by more than the Newton polish can recover
+/// (`NEWTON_MAX_STEP_REL` of the box). In exact mode (`T = Rat`) the eliminant and its real
+/// roots are exact, and only steps 3–4 use `f64`. Smaller `x_tol` costs a few more refinement
+/// steps per root (logarithmic).
+///
+/// # Errors
+/// [`Error::NonFinite`] for NaN/infinite coefficients, [`Error::InvalidRange`] and
+/// [`Error::InvalidTolerance`] for bad options, [`Error::LimitExceeded`] /
+/// [`Error::MatrixTooLarge`] from the elimination.
+///
+/// # Examples
+/// ```
+/// use groebner::{solve, SolveOptions, Verdict};
+/// use poly::BiPoly;
+/// // Circle u² + v² = 1/2 and line v = u meet in [0, 1]² at (1/2, 1/2).
+/// let circle = BiPoly::from_terms([(1.0, 2, 0), (1.0, 0, 2), (-0.5, 0, 0)]);
+/// let line = BiPoly::from_terms([(1.0, 0, 1), (-1.0, 1, 0)]);
+/// let sol = solve(&circle, &line, &SolveOptions::default())?;
+/// assert_eq!(sol.verdict, Verdict::Finite);
+/// assert_eq!(sol.roots.len(), 1);
+/// assert!((sol.roots[0].u - 0.5).abs() < 1e-12 && (sol.roots[0].v - 0.5).abs() < 1e-12);
+/// // Resultant: u_degree 2 (u² = 1/4); with Method::Stam the basis has 2 elements.
+/// assert_eq!((sol.stats.u_degree, sol.stats.v_degree), (2, 1));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn solve<T: SolveScalar>(
+    f1: &BiPoly<T>,
+    f2: &BiPoly<T>,
+    opts: &SolveOptions,
+) -> Result<Solution, Error> {
+    check_options(opts)?;
+    if !T::EXACT {
+        if !f1.coeffs().iter().all(|c| c.nearest_f64().is_finite()) {
+            return Err(Error::NonFinite { what: "F1" });
+        }
+        if !f2.coeffs().iter().all(|c| c.nearest_f64().is_finite()) {
+            return Err(Error::NonFinite { what: "F2" });
+        }
+    }
+    let mut stats = SolveStats::default();
+    let elim = match opts.method {
+        Method::Stam | Method::Buchberger => eliminate_groebner(f1, f2, opts.method, &mut stats)?,
+        Method::Resultant | Method::BezoutResultant => {
+            eliminate_resultant(f1, f2, opts.method, &mut stats)?
+        }
+    };
+    let (eliminant, v_sources) = match elim {
+        Elimination::Verdict(verdict) => {
+            return Ok(Solution {
+                roots: Vec::new(),
+                verdict,
+                stats,
+            });
+        }
+        Elimination::Eliminant {
+            eliminant,
+            v_sources,
+        } => (eliminant, v_sources),
+    };
+    stats.u_degree = eliminant.degree();
+    let widen = |r: [f64; 2]| [r[0] - opts.x_tol, r[1] + opts.x_tol];
+    let (ub, vb) = (widen(opts.u_range), widen(opts.v_range));
+    let mut u_roots = T::real_roots_in(&eliminant, ub, opts.x_tol);
+    if !T::EXACT {
+        near_double_roots(&eliminant, ub, opts.x_tol, &mut u_roots);
+    }
+    stats.u_roots = u_roots.len();
+
+    let system = [f1.map(Scalar::nearest_f64), f2.map(Scalar::nearest_f64)];
+    let mut roots: Vec<Root> = Vec::new();
+    for &u in &u_roots {
+        // Step 3: the first source that does not vanish at u gives the candidates; if none of
+        // them verifies (an ill-conditioned element, or an extraneous u-root), the next
+        // sources, ending with F1 and F2 (the gcd of F1(u, ·), F2(u, ·)), are tried.
+        for g in &v_sources {
+            let Some(candidates) = v_candidates(g, u, vb, opts.x_tol) else {
+                continue; // g(u, v) ≡ 0
+            };
+            let before = roots.len();
+            for v in candidates {
+                match polish_and_verify(&system, u, v, opts, ub, vb) {
+                    Some(r) => roots.push(r),
+                    None => stats.rejected += 1,
+                }
+            }
+            if roots.len() > before {
+                break;
+            }
+        }
+    }
+    roots.sort_by(|a, b| a.u.total_cmp(&b.u).then(a.v.total_cmp(&b.v)));
+    let merge = 4.0 * opts.x_tol;
+    roots.dedup_by(|b, a| (a.u - b.u).abs() <= merge && (a.v - b.v).abs() <= merge);
+    Ok(Solution {
+        roots,
+        verdict: Verdict::Finite,
+        stats,
+    })
+}
+
+fn check_options(opts: &SolveOptions) -> Result<(), Error> {
+    for (which, r) in [("u", opts.u_range), ("v", opts.v_range)] {
+        if !(r[0].is_finite() && r[1].is_finite() && r[0] <= r[1]) {
+            return Err(Error::InvalidRange {
+                which,
+                lo: r[0],
+                hi: r[1],
+            });
+        }
+    }
+    for (name, value) in [("x_tol", opts.x_tol), ("f_tol_rel", opts.f_tol_rel)] {
+        if !(value.is_finite() && value > 0.0) {
+            return Err(Error::InvalidTolerance { name, value });
+        }
+    }
+    Ok(())
+}
+
+/// Result of the elimination step.
+enum Elimination<T> {
+    /// Decided without roots to find.
+    Verdict(Verdict),
+    /// A univariate polynomial in `u` and the polynomials (ordered) that give `v`.
+    Eliminant {
+        eliminant: Poly<T>,
+        v_sources: Vec<BiPoly<T>>,
+    },
+}
+
+fn eliminate_groebner<T: SolveScalar>(
+    f1: &BiPoly<T>,
+    f2: &BiPoly<T>,
+    method: Method,
+    stats: &mut SolveStats,
+) -> Result<Elimination<T>, Error> {
+    let (t1, t2) = (Tracked::new(f1.clone()), Tracked::new(f2.clone()));
+    let mut basis = match method {
+        Method::Stam => Basis::new(stam_tracked(t1, t2)?.into_iter().map(|t| t.poly).collect()),
+        _ => Basis::new(reduce_tracked(buchberger_tracked(vec![t1, t2])?)),
+    };
+    if !basis.contains_unit() && basis.univariate_u().is_none() {
+        // Stam's loop is not proven to give a Gröbner basis: complete it before concluding
+        // that the roots are not finite (Theorem 3 needs a Gröbner basis).
+        let tracked = basis
+            .elements()
+            .iter()
+            .map(|g| Tracked::new(g.clone()))
+            .collect();
+        basis = Basis::new(reduce_tracked(buchberger_tracked(tracked)?));
+    }
+    stats.basis_size = basis.len();
+    stats.coeff_bits = basis.elements().iter().filter_map(T::coeff_bits).max();
+    if basis.contains_unit() {
+        return Ok(Elimination::Verdict(Verdict::NoCommonRoot));
+    }
+    let Some(eliminant) = basis.eliminant() else {
+        return Ok(Elimination::Verdict(Verdict::Infinite));
+    };
+    if !basis.has_finitely_many_roots() && is_groebner(&basis) {
+        return Ok(Elimination::Verdict(Verdict::Infinite));
+    }
+    let mut v_sources: Vec<BiPoly<T>> = basis.v_elements().into_iter().cloned().collect();
+    stats.v_degree = v_sources.first().map_or(0, BiPoly::deg_v);
+    v_sources.push(f1.clone());
+    v_sources.push(f2.clone());
+    Ok(Elimination::Eliminant {
+        eliminant,
+        v_sources,
+    })
+}
+
+/// Whether a basis that lacks Theorem 2's `v^J` leading monomial can be trusted to say
+/// "infinite": only if it is a Gröbner basis.
+fn is_groebner<T: SolveScalar>(basis: &Basis<T>) -> bool {
+    crate::is_groebner_basis(basis.elements())
+}
+
+fn eliminate_resultant<T: SolveScalar>(
+    f1: &BiPoly<T>,
+    f2: &BiPoly<T>,
+    method: Method,
+    stats: &mut SolveStats,
+) -> Result<Elimination<T>, Error> {
+    if f1.is_zero() || f2.is_zero() {
+        let other = if f1.is_zero() { f2 } else { f1 };
+        let verdict = if other.is_zero() || !other.is_constant() {
+            Verdict::Infinite
+        } else {
+            Verdict::NoCommonRoot
+        };
+        return Ok(Elimination::Verdict(verdict));
+    }
+    if f1.deg_v() == 0 && f2.deg_v() == 0 {
+        // Both in u alone: common roots are whole lines u = const, or none.
+        let (a, b) = (f1.to_poly_u(), f2.to_poly_u());
+        let g = a.zip(b).map(|(a, b)| a.gcd(&b)).unwrap_or_else(Poly::zero);
+        let verdict = if g.degree() > 0 {
+            Verdict::Infinite
+        } else {
+            Verdict::NoCommonRoot
+        };
+        return Ok(Elimination::Verdict(verdict));
+    }
+    if f1.deg_v() == 0 || f2.deg_v() == 0 {
+        // One equation is in u alone: Res_v = (that polynomial)^{Deg_v(other)}, whose roots
+        // are all multiple, which f64 root finding can lose (a double root may split into a
+        // complex pair under rounding). Its own roots are the same set, simple.
+        let (pu, other) = if f1.deg_v() == 0 { (f1, f2) } else { (f2, f1) };
+        let eliminant = pu.to_poly_u().expect("Deg_v = 0");
+        stats.coeff_bits = T::coeff_bits(pu);
+        if eliminant.degree() == 0 {
+            return Ok(Elimination::Verdict(Verdict::NoCommonRoot));
+        }
+        stats.v_degree = other.deg_v();
+        return Ok(Elimination::Eliminant {
+            eliminant,
+            v_sources: vec![other.clone()],
+        });
+    }
+    let res = match method {
+        Method::BezoutResultant => bezout_resultant_v(f1, f2)?,
+        _ => sylvester_resultant_v(f1, f2)?,
+    };
+    let res = if T::EXACT { res } else { res.trim_negligible() };
+    stats.coeff_bits = T::coeff_bits(&BiPoly::from_poly_u(&res));
+    if res.is_zero() {
+        // A common factor involving v.
+        return Ok(Elimination::Verdict(Verdict::Infinite));
+    }
+    if res.degree() == 0 {
+        return Ok(Elimination::Verdict(Verdict::NoCommonRoot));
+    }
+    let mut v_sources = vec![f1.clone(), f2.clone()];
+    v_sources.retain(|g| g.deg_v() > 0);
+    v_sources.sort_by_key(BiPoly::deg_v);
+    stats.v_degree = v_sources.first().map_or(0, BiPoly::deg_v);
+    Ok(Elimination::Eliminant {
+        eliminant: res,
+        v_sources,
+    })
+}
+
+/// Adds to `roots` the real critical points `c` of `p` (roots of `p'`) in `range` where `p`
+/// nearly vanishes, `|p(c)| ≤ NEAR_DOUBLE_REL · Σ|p_i||c|^i`, that are not already within
+/// `4·x_tol` of a root.
+///
+/// Why: two intersections with the same `u` (a ray across a surface of revolution at the
+/// height of a profile parameter, for instance) make a double root of the eliminant, and the
+/// rounding of `f64` coefficients can split a double root into a complex pair, which a real
+/// root finder then rightly does not report. The critical point remains, with a value at the
+/// rounding level. Spurious candidates cost one `v`-step and are rejected by the residual
+/// test. Exact mode does not need this: exact isolation sees multiple roots exactly.
+fn near_double_roots<T: SolveScalar>(
+    p: &Poly<T>,
+    range: [f64; 2],
+    x_tol: f64,
+    roots: &mut Vec<f64>,
+) {
+    if p.degree() < 2 {
+        return;
+    }
+    let pf: Poly<f64> = Poly::new(p.coeffs().iter().map(Scalar::nearest_f64).collect());
+    let crit = f64::real_roots_in(&pf.derivative(), range, x_tol);
+    let merge = 4.0 * x_tol;
+    for c in crit {
+        let (value, size) = pf
+            .coeffs()
+            .iter()
+            .rev()
+            .fold((0.0, 0.0), |(v, s), &a| (v * c + a, s * c.abs() + a.abs()));
+        if value.abs() <= NEAR_DOUBLE_REL * size && !roots.iter().any(|r| (r - c).abs() <= merge) {
+            roots.push(c);
+        }
+    }
+    roots.sort_by(f64::total_cmp);
+}
+
+/// Candidate `v` values at `u` from one source `g`: the real roots of `g(u, ·)` in `vb`, or
+/// `None` when `g(u, ·)` vanishes identically (every coefficient below [`VANISH_REL`] times the
+/// size of its terms). Exact sources are evaluated exactly at the rational value of `u`, so
+/// their (large) coefficients do not cancel in floating point.
+fn v_candidates<T: SolveScalar>(
+    g: &BiPoly<T>,
+    u: f64,
+    vb: [f64; 2],
+    x_tol: f64,
+) -> Option<Vec<f64>> {
+    let ut = T::from_f64_exact(u)?;
+    let au = ut.abs();
+    let vanish = T::from_f64(VANISH_REL).expect("a small constant");
+    let mut coeffs: Vec<T> = Vec::with_capacity(g.rows());
+    let mut significant = false;
+    for row in g.rows_iter() {
+        let (mut c, mut s) = (T::zero(), T::zero());
+        for a in row.iter().rev() {
+            c = c * &ut + a;
+            s = s * &au + a.abs();
+        }
+        let vanished = c.abs() <= vanish.clone() * s;
+        significant |= !vanished;
+        coeffs.push(if vanished { T::zero() } else { c });
+    }
+    if !significant {
+        return None;
+    }
+    let p = Poly::new(coeffs);
+    Some(match p.degree() {
+        0 => Vec::new(),
+        1 => {
+            let v = (-p.coeff(0) / p.coeff(1)).nearest_f64();
+            if v >= vb[0] && v <= vb[1] {
+                vec![v]
+            } else {
+                Vec::new()
+            }
+        }
+        _ => T::real_roots_in(&p, vb, x_tol),
+    })
+}
+
+/// Value, gradient and term size `A = Σ|a_ij||u|^i|v|^j` of `p` at `(u, v)`, in one nested
+/// Horner pass (no allocation).
+fn eval_grad(p: &BiPoly<f64>, u: f64, v: f64) -> (f64, f64, f64, f64) {
+    let (au, av) = (u.abs(), v.abs());
+    let (mut f, mut fu, mut fv, mut a) = (0.0, 0.0, 0.0, 0.0);
+    for row in p.rows_iter().rev() {
+        let (mut r, mut dr, mut ar) = (0.0, 0.0, 0.0);
+        for &c in row.iter().rev() {
+            dr = dr * u + r;
+            r = r * u + c;
+            ar = ar * au + c.abs();
+        }
+        fv = fv * v + f;
+        f = f * v + r;
+        fu = fu * v + dr;
+        a = a * av + ar;
+    }
+    (f, fu, fv, a)
+}
+
+/// Newton-polishes `(u, v)` on the system and applies the residual test of [`Root`].
+fn polish_and_verify(
+    system: &[BiPoly<f64>; 2],
+    mut u: f64,
+    mut v: f64,
+    opts: &SolveOptions,
+    ub: [f64; 2],
+    vb: [f64; 2],
+) -> Option<Root> {
+    let max_step = NEWTON_MAX_STEP_REL * (ub[1] - ub[0]).max(vb[1] - vb[0]).max(opts.x_tol);
+    // Residual measure: the worse of the two relative residuals.
+    let measure = |e: &[(f64, f64, f64, f64); 2]| {
+        e.iter()
+            .map(|&(f, _, _, a)| f.abs() / a.max(f64::MIN_POSITIVE))
+            .fold(0.0, f64::max)
+    };
+    let mut e = [eval_grad(&system[0], u, v), eval_grad(&system[1], u, v)];
+    let mut r = measure(&e);
+    for _ in 0..NEWTON_STEPS {
+        let ((f, fu, fv, _), (g, gu, gv, _)) = (e[0], e[1]);
+        let det = fu * gv - fv * gu;
+        if det == 0.0
+            || !det.is_finite()
+            || det.abs() <= f64::EPSILON * (fu * gv).abs().max((fv * gu).abs())
+        {
+            break;
+        }
+        let du = (f * gv - g * fv) / det;
+        let dv = (g * fu - f * gu) / det;
+        if !(du.abs() <= max_step && dv.abs() <= max_step) {
+            break;
+        }
+        let (nu, nv) = (u - du, v - dv);
+        let ne = [eval_grad(&system[0], nu, nv), eval_grad(&system[1], nu, nv)];
+        let nr = measure(&ne);
+        if nr.is_nan() || nr >= r {
+            break;
+        }
+        (u, v, e, r) = (nu, nv, ne, nr);
+    }
+    let ok = e
+        .iter()
+        .all(|&(f, fu, fv, a)| f.abs() <= opts.f_tol_rel * a + (fu.abs() + fv.abs()) * opts.x_tol);
+    let inside = u >= ub[0] && u <= ub[1] && v >= vb[0] && v <= vb[1];
+    (ok && inside).then_some(Root { u, v })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testutil::{article_pair, q, qb};
+    use poly::Rat;
+
+    /// The article pair's real common roots (sympy, 10 digits; groebner.md §2).
+    const ARTICLE_ROOTS: [(f64, f64); 2] =
+        [(-0.8435323370, 0.4805849293), (0.7116194175, -1.3697138583)];
+
+    const METHODS: [Method; 4] = [
+        Method::Stam,
+        Method::Buchberger,
+        Method::Resultant,
+        Method::BezoutResultant,
+    ];
+
+    fn wide(method: Method) -> SolveOptions {
+        SolveOptions {
+            method,
+            u_range: [-2.0, 2.0],
+            v_range: [-2.0, 2.0],
+            ..SolveOptions::default()
+        }
+    }
+
+    fn assert_roots(sol: &Solution, expected: &[(f64, f64)], tol: f64, what: &str) {
+        assert_eq!(sol.roots.len(), expected.len(), "{what}: {:?}", sol.roots);
+        for (r, &(u, v)) in sol.roots.iter().zip(expected) {
+            assert!(
+                (r.u - u).abs() <= tol && (r.v - v).abs() <= tol,
+                "{what}: got ({}, {}), expected ({u}, {v})",
+                r.u,
+                r.v
+            );
+        }
+    }
+
+    #[test]
+    fn article_roots_by_every_method() {
+        let (f1, f2) = article_pair();
+        let (g1, g2) = (f1.to_f64(), f2.to_f64());
+        for m in METHODS {
+            let exact = solve(&f1, &f2, &wide(m)).unwrap();
+            assert_roots(&exact, &ARTICLE_ROOTS, 1e-10, &format!("{m:?} exact"));
+            assert_eq!(exact.verdict, Verdict::Finite, "{m:?}");
+            assert!(
+                exact.stats.coeff_bits.is_some(),
+                "{m:?}: exact mode reports bits"
+            );
+            let float = solve(&g1, &g2, &wide(m)).unwrap();
+            assert_roots(&float, &ARTICLE_ROOTS, 1e-10, &format!("{m:?} f64"));
+            assert_eq!(float.stats.coeff_bits, None, "{m:?}: no bits in f64");
+        }
+        // The Gröbner methods eliminate to u⁸ − … and substitute into v + u⁷ + … (article §3).
+        let s = solve(&f1, &f2, &wide(Method::Buchberger)).unwrap().stats;
+        assert_eq!((s.basis_size, s.u_degree, s.v_degree), (2, 8, 1), "{s:?}");
+        assert_eq!(
+            s.coeff_bits,
+            Some(2),
+            "largest coefficient 2 (in 2u²): {s:?}"
+        );
+        // The resultant carries the extra factor u: degree 9, F2 (Deg_v 1) substituted.
+        let s = solve(&f1, &f2, &wide(Method::Resultant)).unwrap().stats;
+        assert_eq!((s.u_degree, s.v_degree), (9, 1), "{s:?}");
+    }
+
+    #[test]
+    fn resultant_extra_factor_is_not_a_hit() {
+        // In [0, 1]², Res = −u·(u⁸ − …) has the roots u = 0 (extraneous: F1(0, v) ≡ 0 and
+        // F2(0, v) = 1) and u ≈ 0.7116 (its v ≈ −1.37 is outside): no hit at all.
+        let (f1, f2) = article_pair();
+        for m in [Method::Resultant, Method::BezoutResultant] {
+            let opts = SolveOptions {
+                method: m,
+                ..SolveOptions::default()
+            };
+            for sol in [
+                solve(&f1, &f2, &opts).unwrap(),
+                solve(&f1.to_f64(), &f2.to_f64(), &opts).unwrap(),
+            ] {
+                assert!(sol.roots.is_empty(), "{m:?}: {:?}", sol.roots);
+                assert_eq!(
+                    sol.stats.u_roots, 2,
+                    "{m:?}: u = 0 and u ≈ 0.71 were candidates"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn verdicts_follow_theorems_1_to_3() {
+        // uv − 1 = 0 and u = 0 have no common root: 1 ∈ G (Theorem 1).
+        let (a, b) = (qb(&[(1, 1, 1), (-1, 0, 0)]), qb(&[(1, 1, 0)]));
+        // (v − u)(u + 1) and (v − u)(v + 2) share the line v = u.
+        let l = qb(&[(1, 0, 1), (-1, 1, 0)]);
+        let c = &l * &qb(&[(1, 1, 0), (1, 0, 0)]);
+        let d = &l * &qb(&[(1, 0, 1), (2, 0, 0)]);
+        for m in METHODS {
+            let opts = SolveOptions {
+                method: m,
+                ..SolveOptions::default()
+            };
+            let miss = solve(&a, &b, &opts).unwrap();
+            assert!(miss.roots.is_empty(), "{m:?}");
+            if matches!(m, Method::Stam | Method::Buchberger) {
+                assert_eq!(miss.verdict, Verdict::NoCommonRoot, "{m:?}");
+            } else {
+                // Res_v = u: the common root is at v = ∞ over u = 0, which a resultant cannot
+                // tell from a finite one; the candidate u = 0 has no v (F1(0, v) = −1).
+                assert_eq!(miss.stats.u_roots, 1, "{m:?}: {:?}", miss.stats);
+            }
+            let line = solve(&c.to_f64(), &d.to_f64(), &opts).unwrap();
+            assert_eq!(line.verdict, Verdict::Infinite, "{m:?}");
+            assert!(
+                line.roots.is_empty(),
+                "{m:?}: a curve is not a list of points"
+            );
+        }
+    }
+
+    #[test]
+    fn v_element_of_degree_two() {
+        // v² = u and u = 1/4: the reduced basis {v² − 1/4, u − 1/4} is not in shape form.
+        let f1 = qb(&[(1, 0, 2), (-1, 1, 0)]);
+        let f2 = BiPoly::from_terms([(q(1), 1, 0), (-(q(1) / q(4)), 0, 0)]);
+        for exact in [true, false] {
+            let sol = if exact {
+                solve(&f1, &f2, &wide(Method::Buchberger)).unwrap()
+            } else {
+                solve(&f1.to_f64(), &f2.to_f64(), &wide(Method::Stam)).unwrap()
+            };
+            assert_roots(&sol, &[(0.25, -0.5), (0.25, 0.5)], 1e-14, "two v for one u");
+            assert_eq!(
+                (sol.stats.u_degree, sol.stats.v_degree),
+                (1, 2),
+                "{:?}",
+                sol.stats
+            );
+        }
+    }
+
+    #[test]
+    fn edge_roots_are_kept() {
+        // (u − 1)(v) … roots exactly on the box edges u = 1 and v = 0.
+        let f1 = qb(&[(1, 1, 0), (-1, 0, 0)]);
+        let f2 = qb(&[(1, 0, 1), (-1, 1, 1)]); // v·(1 − u) + … vanishes on v = 0
+        let f2 = &f2 + &qb(&[(1, 0, 1)]);
+        let sol = solve(&f1.to_f64(), &f2.to_f64(), &SolveOptions::default()).unwrap();
+        assert_roots(&sol, &[(1.0, 0.0)], 0.0, "corner (1, 0)");
+    }
+
+    #[test]
+    fn bad_options_and_input_are_errors() {
+        let (f1, f2) = article_pair();
+        let (g1, g2) = (f1.to_f64(), f2.to_f64());
+        let bad_range = SolveOptions {
+            u_range: [1.0, 0.0],
+            ..SolveOptions::default()
+        };
+        assert!(
+            matches!(
+                solve(&g1, &g2, &bad_range),
+                Err(Error::InvalidRange { which: "u", .. })
+            ),
+            "reversed range"
+        );
+        let bad_tol = SolveOptions {
+            x_tol: f64::NAN,
+            ..SolveOptions::default()
+        };
+        assert!(
+            matches!(
+                solve(&g1, &g2, &bad_tol),
+                Err(Error::InvalidTolerance { name: "x_tol", .. })
+            ),
+            "NaN tolerance"
+        );
+        let nan = BiPoly::from_terms([(f64::NAN, 1, 1)]);
+        assert_eq!(
+            solve(&nan, &g2, &SolveOptions::default()),
+            Err(Error::NonFinite { what: "F1" }),
+            "NaN coefficient"
+        );
+    }
+
+    #[test]
+    fn eval_grad_matches_derivatives() {
+        let (f1, _) = article_pair();
+        let p = (&f1 * &f1).to_f64();
+        let (u, v) = (0.3, -1.7);
+        let (f, fu, fv, a) = eval_grad(&p, u, v);
+        assert!((f - p.eval(&u, &v)).abs() <= 1e-12, "value");
+        assert!((fu - p.d_du().eval(&u, &v)).abs() <= 1e-12, "∂/∂u");
+        assert!((fv - p.d_dv().eval(&u, &v)).abs() <= 1e-12, "∂/∂v");
+        assert_eq!(a, p.eval_abs(u, v), "term size");
+        let _ = Rat::from_integer(0.into());
+    }
+}

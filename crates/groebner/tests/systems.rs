@@ -1,0 +1,314 @@
+//! Cross-module tests of `groebner` on generated systems: planted common roots (property
+//! tests), Stam's loop against Buchberger, exact against `f64`, and the degree-18 bicubic case.
+//!
+//! Sizes are chosen so the exact (rational) Gröbner computations stay well under a second per
+//! case in a dev build: generic bicubic systems make exact Buchberger take seconds, so the
+//! Buchberger comparisons use systems of resultant degree ≤ 6, and the degree-18 case runs
+//! Stam's loop once.
+
+use groebner::{
+    Method, RayPatchSystem, SolveOptions, Verdict, buchberger, is_groebner_basis, ray_patch_system,
+    reduce_basis, solve, stam_basis, sylvester_resultant_v,
+};
+use poly::{BiPoly, QBiPoly, Rat};
+use proptest::prelude::*;
+use rand::{Rng, SeedableRng};
+
+fn q(n: i64) -> Rat {
+    Rat::from_integer(n.into())
+}
+
+fn f(r: &Rat) -> f64 {
+    poly::rat_to_f64(r)
+}
+
+/// A system `F_k = a_k·g1 + b_k·g2` vanishing at two planted points `(u1, v1)`, `(u2, v2)`
+/// (`u1 ≠ u2`): `g1 = (u − u1)(u − u2)` and `g2 = v − ℓ(u)`, `ℓ` the line through both points,
+/// generate the ideal of the two points, so both `F_k` vanish there whatever `a_k`, `b_k` are.
+fn planted_system(pts: [(Rat, Rat); 2], a: [QBiPoly; 2], b: [QBiPoly; 2]) -> (QBiPoly, QBiPoly) {
+    let [(u1, v1), (u2, v2)] = pts;
+    let g1 = BiPoly::from_terms([
+        (u1.clone() * &u2, 0, 0),
+        (-(u1.clone() + &u2), 1, 0),
+        (q(1), 2, 0),
+    ]);
+    let slope = (v2 - &v1) / (u2 - &u1);
+    let g2 = BiPoly::from_terms([
+        (q(1), 0, 1),
+        (slope.clone() * &u1 - v1, 0, 0),
+        (-slope, 1, 0),
+    ]);
+    let [a1, a2] = a;
+    let [b1, b2] = b;
+    (&a1 * &g1 + &b1 * &g2, &a2 * &g1 + &b2 * &g2)
+}
+
+/// A random polynomial with integer coefficients in [−4, 4] and degrees ≤ (du, dv).
+fn arb_poly(du: usize, dv: usize) -> impl Strategy<Value = QBiPoly> {
+    prop::collection::vec(-4i64..=4, (du + 1) * (dv + 1))
+        .prop_map(move |c| BiPoly::from_grid(du + 1, dv + 1, c.into_iter().map(q).collect()))
+}
+
+/// Two distinct planted points in (0, 1)² with small denominators.
+fn arb_points() -> impl Strategy<Value = [(Rat, Rat); 2]> {
+    (1i64..=9, 1i64..=6, 1i64..=7, 1i64..=4)
+        .prop_filter("distinct u", |&(a, _, c, _)| a * 8 != c * 10)
+        .prop_map(|(a, b, c, d)| [(q(a) / q(10), q(b) / q(7)), (q(c) / q(8), q(d) / q(5))])
+}
+
+fn found(roots: &[groebner::Root], p: &(Rat, Rat), tol: f64) -> bool {
+    roots
+        .iter()
+        .any(|r| (r.u - f(&p.0)).abs() <= tol && (r.v - f(&p.1)).abs() <= tol)
+}
+
+/// Root-position tolerance for comparisons: `x_tol` is 1e-10 and the Newton polish usually
+/// does better; 1e-8 leaves room for ill-conditioned planted roots.
+const POS_TOL: f64 = 1e-8;
+
+/// Position tolerance at a singular common root (the curves are tangent there, the Jacobian
+/// vanishes): the residual then falls only quadratically with the position error, so `f64`
+/// resolves the position to about `√ε ≈ 1.5e-8` relative; 1e-6 allows for the coefficient
+/// sizes of these systems.
+const SINGULAR_POS_TOL: f64 = 1e-6;
+
+/// True when the exact Jacobian determinant of `(F1, F2)` vanishes at `p`: the curves are
+/// tangent there. `f64` may then miss the root altogether (the double root of the eliminant
+/// can split into a complex pair under rounding), which `solve` documents; the `f64`
+/// assertions skip such systems, the exact ones do not.
+fn singular_at(f1: &QBiPoly, f2: &QBiPoly, p: &(Rat, Rat)) -> bool {
+    let j = f1.d_du().eval(&p.0, &p.1) * f2.d_dv().eval(&p.0, &p.1)
+        - f1.d_dv().eval(&p.0, &p.1) * f2.d_du().eval(&p.0, &p.1);
+    j == q(0)
+}
+
+/// The tolerance for planted root `p`: [`SINGULAR_POS_TOL`] at a singular root, else
+/// [`POS_TOL`].
+fn tol_at(f1: &QBiPoly, f2: &QBiPoly, p: &(Rat, Rat)) -> f64 {
+    if singular_at(f1, f2, p) {
+        SINGULAR_POS_TOL
+    } else {
+        POS_TOL
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// Moderate degree (resultant degree ≤ 10): every planted root is found by exact Stam,
+    /// exact and `f64` resultants; `f64` and exact agree on the whole root set.
+    #[test]
+    fn planted_roots_are_found(pts in arb_points(),
+                               a1 in arb_poly(1, 1), a2 in arb_poly(1, 1),
+                               b1 in arb_poly(1, 1), b2 in arb_poly(1, 1)) {
+        let (f1, f2) = planted_system(pts.clone(), [a1, a2], [b1, b2]);
+        let exact = solve(&f1, &f2, &SolveOptions { method: Method::Stam, ..Default::default() })
+            .unwrap();
+        prop_assume!(exact.verdict == Verdict::Finite); // a common curve is possible, rarely
+        for p in &pts {
+            let tol = tol_at(&f1, &f2, p);
+            prop_assert!(found(&exact.roots, p, tol), "exact Stam missed {p:?}: {:?}", exact.roots);
+        }
+        let (g1, g2) = (f1.to_f64(), f2.to_f64());
+        let singular = pts.iter().any(|p| singular_at(&f1, &f2, p));
+        for m in [Method::Resultant, Method::BezoutResultant] {
+            let opts = SolveOptions { method: m, ..Default::default() };
+            let ex = solve(&f1, &f2, &opts).unwrap();
+            let fl = solve(&g1, &g2, &opts).unwrap();
+            for p in &pts {
+                let tol = tol_at(&f1, &f2, p);
+                prop_assert!(found(&ex.roots, p, tol), "{m:?} exact missed {p:?}");
+            }
+            prop_assert_eq!(ex.roots.len(), exact.roots.len(), "{:?}: {:?} vs {:?}", m, ex.roots, exact.roots);
+            if singular {
+                continue;
+            }
+            // f64 finds every planted root, and the same root set as exact Stam.
+            for p in &pts {
+                prop_assert!(found(&fl.roots, p, POS_TOL), "{m:?} f64 missed {p:?}");
+            }
+            prop_assert_eq!(fl.roots.len(), exact.roots.len(), "{:?} f64: {:?} vs {:?}", m, fl.roots, exact.roots);
+            for r in &fl.roots {
+                prop_assert!(exact.roots.iter().any(|e| (e.u - r.u).abs() <= SINGULAR_POS_TOL && (e.v - r.v).abs() <= SINGULAR_POS_TOL),
+                    "{m:?} f64 root {r:?} not among exact {:?}", exact.roots);
+            }
+        }
+    }
+
+    /// Low degree (resultant degree ≤ 6): Stam's loop and Buchberger generate the same ideal,
+    /// Buchberger's output is a Gröbner basis, and `f64` Stam finds the planted roots too.
+    #[test]
+    fn stam_and_buchberger_agree(pts in arb_points(),
+                                 a1 in arb_poly(1, 0), a2 in arb_poly(1, 0),
+                                 b1 in arb_poly(0, 1), b2 in arb_poly(0, 1)) {
+        let (f1, f2) = planted_system(pts.clone(), [a1, a2], [b1, b2]);
+        prop_assume!(!f1.is_zero() && !f2.is_zero());
+        let stam = stam_basis(&f1, &f2).unwrap();
+        let buch = buchberger(&[f1.clone(), f2.clone()]).unwrap();
+        prop_assert!(is_groebner_basis(buch.elements()), "Buchberger's output: {buch:?}");
+        let completed = buchberger(stam.elements()).unwrap();
+        prop_assert_eq!(&completed, &buch, "same reduced basis, same ideal");
+        if is_groebner_basis(stam.elements()) {
+            prop_assert_eq!(reduce_basis(stam.elements()), buch.elements().to_vec(), "reduced Stam");
+        }
+        let sol = solve(&f1.to_f64(), &f2.to_f64(), &SolveOptions { method: Method::Stam, ..Default::default() })
+            .unwrap();
+        if sol.verdict == Verdict::Finite && !pts.iter().any(|p| singular_at(&f1, &f2, p)) {
+            for p in &pts {
+                prop_assert!(found(&sol.roots, p, POS_TOL), "f64 Stam missed {p:?}: {sol:?}");
+            }
+        }
+    }
+}
+
+/// Cubic Bernstein → power basis: `Σ_i c_i B_i(t) = Σ_k (Σ_i M[k][i] c_i) t^k`.
+const BERNSTEIN_TO_POWER: [[i64; 4]; 4] =
+    [[1, 0, 0, 0], [-3, 3, 0, 0], [3, -6, 3, 0], [-1, 3, -3, 1]];
+
+/// Power-basis coefficients `P_kl` (grid index `l * 4 + k`) of the Bézier patch with control
+/// points `c[i][j]` (`i` along `u`, `j` along `v`).
+fn bezier_to_power(c: &[[[Rat; 3]; 4]; 4]) -> Vec<[Rat; 3]> {
+    let m = BERNSTEIN_TO_POWER;
+    let mut out = vec![[q(0), q(0), q(0)]; 16];
+    for k in 0..4 {
+        for l in 0..4 {
+            for i in 0..4 {
+                for j in 0..4 {
+                    let w = q(m[k][i] * m[l][j]);
+                    if w == q(0) {
+                        continue;
+                    }
+                    for x in 0..3 {
+                        out[l * 4 + k][x] += w.clone() * &c[i][j][x];
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// `S(u, v)` of a power-basis patch, in `f64`.
+fn patch_point(p: &[[f64; 3]], u: f64, v: f64) -> [f64; 3] {
+    let mut s = [0.0; 3];
+    for (idx, c) in p.iter().enumerate() {
+        let w = u.powi((idx % 4) as i32) * v.powi((idx / 4) as i32);
+        for x in 0..3 {
+            s[x] += w * c[x];
+        }
+    }
+    s
+}
+
+#[test]
+fn degree_18_bicubic_patch() {
+    // A generic bicubic Bézier patch (random rational control points near a bumpy grid) and a
+    // ray aimed at S(1/3, 3/5), so at least one hit is planted.
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(2024);
+    let ctrl: [[[Rat; 3]; 4]; 4] = std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            let jitter = |rng: &mut rand_chacha::ChaCha8Rng| q(rng.gen_range(-20..=20)) / q(40);
+            [
+                q(i as i64) + jitter(&mut rng),
+                q(j as i64) + jitter(&mut rng),
+                q(rng.gen_range(-8..=8)) / q(4),
+            ]
+        })
+    });
+    let power = bezier_to_power(&ctrl);
+    let (u0, v0) = (q(1) / q(3), q(3) / q(5));
+    let target: [Rat; 3] = {
+        let mut s = [q(0), q(0), q(0)];
+        for (idx, c) in power.iter().enumerate() {
+            let w = u0.pow((idx % 4) as i32) * v0.pow((idx / 4) as i32);
+            for x in 0..3 {
+                s[x] += w.clone() * &c[x];
+            }
+        }
+        s
+    };
+    let dir = [q(2) / q(7), q(-1) / q(5), q(-1)];
+    let origin: [Rat; 3] = std::array::from_fn(|x| target[x].clone() - q(3) * &dir[x]);
+    let sys: RayPatchSystem<Rat> = ray_patch_system(&power, 4, 4, &origin, &dir).unwrap();
+    assert_eq!(sys.pivot, 2, "z is the dominant direction");
+
+    // Kajiya's bound is reached: the resultant has degree exactly 18.
+    let res = sylvester_resultant_v(&sys.f1, &sys.f2).unwrap();
+    assert_eq!(res.degree(), 18, "generic bicubic: degree 18");
+
+    // Exact Stam (Gröbner) and exact Sylvester resultant find the same hits, and the f64
+    // resultant agrees with them.
+    let gb = solve(
+        &sys.f1,
+        &sys.f2,
+        &SolveOptions {
+            method: Method::Stam,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let rs = solve(
+        &sys.f1,
+        &sys.f2,
+        &SolveOptions {
+            method: Method::Resultant,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let fsys = ray_patch_system(
+        &power
+            .iter()
+            .map(|p| [f(&p[0]), f(&p[1]), f(&p[2])])
+            .collect::<Vec<_>>(),
+        4,
+        4,
+        &origin.clone().map(|x| f(&x)),
+        &dir.clone().map(|x| f(&x)),
+    )
+    .unwrap();
+    let fl = solve(&fsys.f1, &fsys.f2, &SolveOptions::default()).unwrap();
+    assert_eq!(rs.stats.u_degree, 18, "{:?}", rs.stats);
+    assert!(gb.stats.u_degree >= 18, "Stam's eliminant: {:?}", gb.stats);
+    assert!(!gb.roots.is_empty(), "the planted hit exists");
+    for other in [&rs, &fl] {
+        assert_eq!(
+            other.roots.len(),
+            gb.roots.len(),
+            "{:?} vs {:?}",
+            other.roots,
+            gb.roots
+        );
+        for (a, b) in other.roots.iter().zip(&gb.roots) {
+            assert!(
+                (a.u - b.u).abs() <= POS_TOL && (a.v - b.v).abs() <= POS_TOL,
+                "{a:?} vs {b:?}"
+            );
+        }
+    }
+    assert!(
+        found(&gb.roots, &(u0.clone(), v0.clone()), POS_TOL),
+        "planted (1/3, 3/5)"
+    );
+
+    // Every hit is a point of the patch on the ray: |S(u, v) − R(t)| is small in 3-D.
+    let pts: Vec<[f64; 3]> = power
+        .iter()
+        .map(|p| [f(&p[0]), f(&p[1]), f(&p[2])])
+        .collect();
+    for r in &fl.roots {
+        let t = fsys.t_at(&r.u, &r.v);
+        let s = patch_point(&pts, r.u, r.v);
+        let o = origin.clone().map(|x| f(&x));
+        let d = dir.clone().map(|x| f(&x));
+        let gap = (0..3)
+            .map(|x| (s[x] - (o[x] + t * d[x])).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            gap <= 1e-9,
+            "hit ({}, {}) at t = {t}: |S − R| = {gap:e}",
+            r.u,
+            r.v
+        );
+    }
+}
