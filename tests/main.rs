@@ -12,3 +12,8 @@ mod render_analytic;
 mod render_golden;
 // The library entry point behind the CLI: atomic output, PFM depth, option overrides.
 mod render_job;
+// Bézier patches: the teapot by Gröbner and resultant, Newton reference, seams, lid apex.
+mod bezier_teapot;
+// Bézier patches: Stam's table (degrees 2, 4, 6 in u, 1 in v), the saddle's collapse 18 → 2,
+// a random bicubic at degree 18.
+mod bezier_degrees;

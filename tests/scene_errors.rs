@@ -376,11 +376,11 @@ const CASES: &[Case] = &[
         "`x` is a variable: only `Equation` may use x, y and z",
     ),
     case(
-        "#object Type = BEZIER_PATCH",
+        "#object Type = BEZIER_PATCH Method = FAST Control points = saddle.pts",
         2,
-        16,
-        "BEZIER_PATCH",
-        "`BEZIER_PATCH` is not supported yet",
+        38,
+        "Method",
+        "invalid `Method`: must be GROEBNER or RESULTANT, found `FAST`",
     ),
 ];
 

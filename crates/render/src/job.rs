@@ -67,6 +67,17 @@ pub fn render_scene(
         return Err(RenderError::Option("--samples must be at least 1".into()));
     }
     let setup_start = Instant::now();
+    // `--patch-method` overrides every Bézier object's `Method`.
+    let overridden = opts.patch_method.map(|m| {
+        let mut s = scene.clone();
+        for o in &mut s.objects {
+            if let crate::scene::ShapeKind::BezierPatches { method, .. } = &mut o.shape {
+                *method = m;
+            }
+        }
+        s
+    });
+    let scene = overridden.as_ref().unwrap_or(scene);
     let prepared = PreparedScene::new(scene)?;
     let settings = RenderSettings {
         size,

@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 
 use crate::output::PngOptions;
 use crate::scene::Scene;
+use crate::surface::PatchMethod;
 
 /// Options that override or complete the scene's own settings. The command line is parsed into
 /// a raw argument struct and then into this; library users fill it directly.
@@ -21,6 +22,8 @@ pub struct RenderOptions {
     pub depth: Option<PathBuf>,
     /// PNG bit depth, alpha and gamma.
     pub png: PngOptions,
+    /// Elimination method for every Bézier patch, overriding the scene's `Method`.
+    pub patch_method: Option<PatchMethod>,
 }
 
 impl Default for RenderOptions {
@@ -33,6 +36,7 @@ impl Default for RenderOptions {
             samples: 1,
             depth: None,
             png: PngOptions::default(),
+            patch_method: None,
         }
     }
 }

@@ -121,5 +121,9 @@ fn build_surface(
             Implicit::new(Algebraic::new(poly.clone()), user_bounds),
             world_from_object,
         ),
+        ShapeKind::BezierPatches { patches, method } => place(
+            crate::surface::BezierMesh::new(patches.clone(), *method)?,
+            world_from_object,
+        ),
     })
 }

@@ -6,7 +6,7 @@ use std::time::Duration;
 
 use poly::{RootStats, STATS_DEGREES};
 
-use crate::surface::SurfaceKind;
+use crate::surface::{PatchStats, SurfaceKind};
 
 /// Counters filled in while tracing. Each worker thread owns one (inside its
 /// [`Workspace`](crate::Workspace)); the totals are summed with [`TraceStats::merge`].
@@ -41,6 +41,8 @@ pub struct TraceStats {
     pub singular_normals: u64,
     /// Root queries of the polynomial solver (by degree, exact fallbacks…).
     pub roots: RootStats,
+    /// Bézier patch intersections: Stam's table (basis size, degrees) and rejections.
+    pub patches: PatchStats,
 }
 
 /// Counters for one kind of surface.
@@ -87,6 +89,7 @@ impl TraceStats {
         self.total_internal_reflections += o.total_internal_reflections;
         self.singular_normals += o.singular_normals;
         self.roots.merge(&o.roots);
+        self.patches.merge(&o.patches);
     }
 
     /// All rays traced.
@@ -241,6 +244,9 @@ impl fmt::Display for StatsReport<'_> {
             "  unresolved roots                   {:>12}",
             s.unresolved_roots()
         )?;
+        if s.patches.solves > 0 {
+            write!(f, "{}", s.patches)?;
+        }
         let ms = |d: Duration| d.as_secs_f64() * 1e3;
         let t = &self.times;
         writeln!(f, "Time (ms)")?;

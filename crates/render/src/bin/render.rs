@@ -1,5 +1,6 @@
 //! The `render` command line: `render SCENE [-o OUT.png] [--size WxH] [--threads N]
-//! [--samples N] [--stats] [--depth OUT.pfm] [--bits 8|16] [--alpha] [--gamma G]`.
+//! [--samples N] [--stats] [--depth OUT.pfm] [--bits 8|16] [--alpha] [--gamma G]
+//! [--patch-method groebner|resultant]`.
 //!
 //! Arguments are parsed into a raw struct, converted to `RenderOptions`, and handed to the
 //! library; no rendering logic lives here.
@@ -13,6 +14,7 @@ use std::time::{Duration, Instant};
 use anyhow::Context;
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use render::surface::PatchMethod;
 use render::{Gamma, PngOptions, RenderOptions, StatsReport};
 
 /// Delay before the progress bar appears: renders shorter than this show nothing.
@@ -51,6 +53,14 @@ struct RawArgs {
     /// Output transfer function: `srgb` or a power-law gamma such as `2.2` (`1` for linear).
     #[arg(long, default_value = "srgb", value_parser = parse_gamma)]
     gamma: Gamma,
+    /// Elimination method for every Bézier patch (`groebner` or `resultant`), overriding the
+    /// scene's `Method`.
+    #[arg(long, value_name = "METHOD", value_parser = parse_patch_method)]
+    patch_method: Option<PatchMethod>,
+}
+
+fn parse_patch_method(s: &str) -> Result<PatchMethod, String> {
+    PatchMethod::parse(s).ok_or_else(|| format!("expected `groebner` or `resultant`, got `{s}`"))
 }
 
 fn parse_size(s: &str) -> Result<[u32; 2], String> {
@@ -100,6 +110,7 @@ impl RawArgs {
                 alpha: self.alpha,
                 gamma: self.gamma,
             },
+            patch_method: self.patch_method,
         }
     }
 }

@@ -22,6 +22,7 @@ use super::syntax::{
     Block, Command, Entry, Key, SceneAst, ShapeType, TextureType, Value, parse_syntax,
 };
 use crate::poly3::Poly3;
+use crate::surface::{PatchMethod, parse_bpt, parse_control_points};
 
 /// The largest image side `#viewport Size` and texture sizes accept, in pixels.
 ///
@@ -152,7 +153,7 @@ pub fn build(ast: &SceneAst, file: &Path) -> Result<Scene, SceneError> {
             Command::Object => {
                 scene
                     .objects
-                    .push(build_object(&mut fields, &texture_names)?);
+                    .push(build_object(&mut fields, &texture_names, &base)?);
                 object_spans.push(&block.command.span);
             }
             Command::Viewport => scene.viewport = build_viewport(&mut fields)?,
@@ -750,7 +751,11 @@ fn read_texture(
     })
 }
 
-fn build_object(f: &mut Fields<'_>, textures: &[Option<String>]) -> Result<Object, SceneError> {
+fn build_object(
+    f: &mut Fields<'_>,
+    textures: &[Option<String>],
+    base: &Path,
+) -> Result<Object, SceneError> {
     let shape_type = match f.type_value() {
         Some(Field {
             value: Eval::Shape(s),
@@ -778,7 +783,7 @@ fn build_object(f: &mut Fields<'_>, textures: &[Option<String>]) -> Result<Objec
     ];
     allowed.extend_from_slice(shape_type.keys());
     f.only(&allowed, shape_type.name())?;
-    let shape = build_shape(f, shape_type)?;
+    let shape = build_shape(f, shape_type, base)?;
     if let Err(e) = shape.validate() {
         let key = Key::ALL.iter().copied().find(|k| k.name() == e.key);
         let span = key.map_or(&f.block.command.span, |k| f.span_of(k));
@@ -886,7 +891,7 @@ fn build_object(f: &mut Fields<'_>, textures: &[Option<String>]) -> Result<Objec
     })
 }
 
-fn build_shape(f: &Fields<'_>, shape: ShapeType) -> Result<ShapeKind, SceneError> {
+fn build_shape(f: &Fields<'_>, shape: ShapeType, base: &Path) -> Result<ShapeKind, SceneError> {
     let detail = format!(" of type {}", shape.name());
     let vector = |key| f.required_vector(key, &detail);
     Ok(match shape {
@@ -984,7 +989,51 @@ fn build_shape(f: &Fields<'_>, shape: ShapeType) -> Result<ShapeKind, SceneError
                 _ => return Err(Fields::wrong(field, "an equation in x, y, z")),
             }
         }
+        ShapeType::BezierPatch | ShapeType::BezierMesh => {
+            read_patches(f, shape == ShapeType::BezierMesh, base, &detail)?
+        }
     })
+}
+
+/// `Control points = FILE` (read relative to the scene) and `Method = GROEBNER | RESULTANT`
+/// of a Bézier patch or mesh; errors in the file name the file and its line.
+fn read_patches(
+    f: &Fields<'_>,
+    mesh: bool,
+    base: &Path,
+    detail: &str,
+) -> Result<ShapeKind, SceneError> {
+    let method = match f.text(Key::Method)? {
+        None => PatchMethod::default(),
+        Some((word, span)) => PatchMethod::parse(word).ok_or_else(|| {
+            invalid(
+                span,
+                Key::Method,
+                format!("must be GROEBNER or RESULTANT, found `{word}`"),
+            )
+        })?,
+    };
+    let (file, span) = f
+        .text(Key::ControlPoints)?
+        .ok_or_else(|| f.missing(Key::ControlPoints, detail))?;
+    let path = base.join(file);
+    let fail = |reason: String| {
+        SceneError::at(
+            span,
+            ErrorKind::FileRead {
+                path: path.display().to_string(),
+                reason,
+            },
+        )
+    };
+    let text = std::fs::read_to_string(&path).map_err(|e| fail(e.to_string()))?;
+    let patches = if mesh {
+        parse_bpt(&text)
+    } else {
+        parse_control_points(&text).map(|p| vec![p])
+    }
+    .map_err(|e| fail(e.to_string()))?;
+    Ok(ShapeKind::BezierPatches { patches, method })
 }
 
 #[cfg(test)]

@@ -258,6 +258,13 @@ pub enum ShapeKind {
         /// The polynomial `F`.
         poly: Poly3,
     },
+    /// Bézier patches (`BEZIER_PATCH`: one; `BEZIER_MESH`: a `.bpt` file), traced exactly.
+    BezierPatches {
+        /// The patches, at least one.
+        patches: Vec<crate::surface::BezierPatch>,
+        /// How `v` is eliminated for each ray.
+        method: crate::surface::PatchMethod,
+    },
 }
 
 impl ShapeKind {
@@ -272,6 +279,8 @@ impl ShapeKind {
             ShapeKind::Superquadric { .. } => "SUPERQUADRIC",
             ShapeKind::Torus { .. } => "TORUS",
             ShapeKind::Algebraic { .. } => "ALGEBRAIC_SURFACE",
+            ShapeKind::BezierPatches { patches, .. } if patches.len() == 1 => "BEZIER_PATCH",
+            ShapeKind::BezierPatches { .. } => "BEZIER_MESH",
         }
     }
 
@@ -369,6 +378,12 @@ impl ShapeKind {
                 }
                 if poly.degree() == 0 {
                     return Err(InvalidModel::new("Equation", "must have degree at least 1"));
+                }
+                Ok(())
+            }
+            ShapeKind::BezierPatches { patches, .. } => {
+                if patches.is_empty() {
+                    return Err(InvalidModel::new("Control points", "holds no patch"));
                 }
                 Ok(())
             }

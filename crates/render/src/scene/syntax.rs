@@ -200,11 +200,15 @@ pub enum ShapeType {
     Torus,
     /// `ALGEBRAIC_SURFACE`: `Equation`.
     AlgebraicSurface,
+    /// `BEZIER_PATCH`: `Control points` (a file of 16 points, Stam's form), `Method`.
+    BezierPatch,
+    /// `BEZIER_MESH`: `Control points` (a `.bpt` file of patches), `Method`.
+    BezierMesh,
 }
 
 impl ShapeType {
     /// Every type.
-    pub const ALL: [ShapeType; 8] = [
+    pub const ALL: [ShapeType; 10] = [
         ShapeType::Sphere,
         ShapeType::Plane,
         ShapeType::Polygon,
@@ -213,6 +217,8 @@ impl ShapeType {
         ShapeType::Superquadric,
         ShapeType::Torus,
         ShapeType::AlgebraicSurface,
+        ShapeType::BezierPatch,
+        ShapeType::BezierMesh,
     ];
 
     /// The type as written after `Type =`.
@@ -226,6 +232,8 @@ impl ShapeType {
             ShapeType::Superquadric => "SUPERQUADRIC",
             ShapeType::Torus => "TORUS",
             ShapeType::AlgebraicSurface => "ALGEBRAIC_SURFACE",
+            ShapeType::BezierPatch => "BEZIER_PATCH",
+            ShapeType::BezierMesh => "BEZIER_MESH",
         }
     }
 
@@ -240,6 +248,7 @@ impl ShapeType {
             ShapeType::Superquadric => &[Key::Center, Key::Size, Key::Power],
             ShapeType::Torus => &[Key::Center, Key::Axis, Key::MajorRadius, Key::MinorRadius],
             ShapeType::AlgebraicSurface => &[Key::Equation],
+            ShapeType::BezierPatch | ShapeType::BezierMesh => &[Key::ControlPoints, Key::Method],
         }
     }
 }
@@ -399,6 +408,10 @@ keys! {
     MinorRadius => "MinorRadius",
     /// `Equation = polynomial in x, y, z` (algebraic surface).
     Equation => "Equation",
+    /// `Control points = file` (Bézier patch: 16 points; Bézier mesh: a `.bpt` file).
+    ControlPoints => "Control points",
+    /// `Method = GROEBNER | RESULTANT` (Bézier patch and mesh).
+    Method => "Method",
     /// `Resolution = (rx, ry)` (`#viewport`).
     Resolution => "Resolution",
     /// `File Name = name` (`#save`, `#texture`).
@@ -509,6 +522,8 @@ fn object_key_use(shape: Option<ShapeType>, key: Key) -> KeyUse {
         Key::Equation => V::Number,
         Key::Center | Key::Origin | Key::Normal | Key::Min | Key::Max | Key::Axis => V::Vector,
         Key::A | Key::B | Key::C | Key::D | Key::Size => V::Vector,
+        Key::ControlPoints => V::Path,
+        Key::Method => V::Word,
         _ => return KeyUse::Unknown,
     };
     match shape {
@@ -890,11 +905,8 @@ impl<'a> Parser<'a> {
                 }
             }
             ValueKind::Shape => {
-                const TYPES: &str = "SPHERE, PLANE, POLYGON, TRIANGLE, BOX, SUPERQUADRIC, TORUS or ALGEBRAIC_SURFACE";
+                const TYPES: &str = "SPHERE, PLANE, POLYGON, TRIANGLE, BOX, SUPERQUADRIC, TORUS, ALGEBRAIC_SURFACE, BEZIER_PATCH or BEZIER_MESH";
                 let (w, span) = self.word_value(key, "an object type")?;
-                if w.eq_ignore_ascii_case("BEZIER_PATCH") {
-                    return Err(SceneError::at(&span, ErrorKind::Unsupported { what: w }));
-                }
                 match ShapeType::ALL
                     .into_iter()
                     .find(|s| s.name().eq_ignore_ascii_case(&w))
@@ -1500,11 +1512,7 @@ mod tests {
             ),
             (
                 "#object Type = CONE",
-                "t.scene:1:16: unknown value `CONE` for `Type` (expected SPHERE, PLANE, POLYGON, TRIANGLE, BOX, SUPERQUADRIC, TORUS or ALGEBRAIC_SURFACE)",
-            ),
-            (
-                "#object Type = BEZIER_PATCH",
-                "t.scene:1:16: `BEZIER_PATCH` is not supported yet",
+                "t.scene:1:16: unknown value `CONE` for `Type` (expected SPHERE, PLANE, POLYGON, TRIANGLE, BOX, SUPERQUADRIC, TORUS, ALGEBRAIC_SURFACE, BEZIER_PATCH or BEZIER_MESH)",
             ),
             (
                 "#world Shadows = MAYBE",

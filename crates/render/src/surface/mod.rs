@@ -20,7 +20,12 @@ use crate::workspace::Workspace;
 
 mod aabox;
 mod algebraic;
+mod bezier_mesh;
+mod bezier_patch;
+mod bpt;
 mod implicit;
+mod patch_bvh;
+mod patch_stats;
 mod plane;
 mod polygon;
 mod sphere;
@@ -30,6 +35,13 @@ mod transformed;
 
 pub use aabox::AaBox;
 pub use algebraic::Algebraic;
+pub use bezier_mesh::{
+    BezierMesh, DEFAULT_SUBDIVISION, HIT_P_ERR_REL, HIT_RESIDUAL_REL, MAX_SUBDIVISION, PatchHit,
+    PatchMethod,
+};
+pub use bezier_patch::{BezierPatch, MAX_PATCH_DEGREE, POWER_ZERO_REL, PatchError};
+pub use bpt::{BptError, MAX_BPT_PATCHES, parse_bpt, parse_control_points};
+pub use patch_stats::{HIST_BINS, PatchStats};
 pub use implicit::{Implicit, ImplicitFn, ROOT_X_TOL_REL, SINGULAR_P_ERR_REL};
 pub use plane::Plane;
 pub use polygon::Polygon;
@@ -87,11 +99,13 @@ pub enum SurfaceKind {
     Torus,
     /// [`Algebraic`].
     Algebraic,
+    /// [`BezierMesh`] (one or more Bézier patches).
+    BezierPatch,
 }
 
 impl SurfaceKind {
     /// Number of kinds.
-    pub const COUNT: usize = 8;
+    pub const COUNT: usize = 9;
     /// Every kind, in [`SurfaceKind::index`] order.
     pub const ALL: [SurfaceKind; SurfaceKind::COUNT] = [
         SurfaceKind::Sphere,
@@ -102,6 +116,7 @@ impl SurfaceKind {
         SurfaceKind::Superquadric,
         SurfaceKind::Torus,
         SurfaceKind::Algebraic,
+        SurfaceKind::BezierPatch,
     ];
 
     /// Position in [`SurfaceKind::ALL`] and in per-kind statistics arrays.
@@ -120,6 +135,7 @@ impl SurfaceKind {
             SurfaceKind::Superquadric => "SUPERQUADRIC",
             SurfaceKind::Torus => "TORUS",
             SurfaceKind::Algebraic => "ALGEBRAIC",
+            SurfaceKind::BezierPatch => "BEZIER_PATCH",
         }
     }
 }

@@ -1,0 +1,575 @@
+//! [`BezierMesh`]: Bézier patches traced exactly — every ray/patch intersection is a common
+//! root of two algebraic curves `F1(u, v) = F2(u, v) = 0` (J. Stam 1988, "Ray tracing
+//! polynomial patches using Groebner bases", article §2–4; `ray3.c`), solved by
+//! [`groebner::solve`] with Stam's Gröbner reduction or Kajiya's resultant.
+//!
+//! Scene syntax (`paper-notes/bezier-patches.md`):
+//! ```text
+//! #object
+//! Type = BEZIER_PATCH
+//! Control points = saddle.pts   // Stam's form: 16 lines `x y z`, P[0][0] P[0][1] … P[3][3]
+//! Method = GROEBNER             // or RESULTANT (default GROEBNER)
+//!
+//! #object
+//! Type = BEZIER_MESH
+//! Control points = teapot.bpt   // count, then per patch `n m` and (n+1)(m+1) lines `x y z`
+//! Method = RESULTANT
+//! ```
+//!
+//! Per frame (here: at construction) each patch is cut into `k × k` sub-patches by de
+//! Casteljau's algorithm (the article's §4 "partial subdivision … with tight bounds"), each
+//! converted once to the power basis (Stam `CalcCoef`, §4.1) about the centre of its box, and a
+//! BVH is built over the sub-patch boxes. Per ray and sub-patch whose box the ray crosses:
+//! 1. move the ray origin to where it enters the box and express it about the box centre
+//!    (small numbers near the surface, as for implicit surfaces);
+//! 2. build `F1`, `F2` by eliminating `t` with the largest direction component as pivot
+//!    ([`groebner::ray_patch_system`], article §2 eq. 2–5);
+//! 3. eliminate `v` and solve ([`groebner::solve`] over the sub-patch's `[0, 1]²`): Gröbner
+//!    eliminant or resultant, real `u`-roots by `poly`, back-substitution, residual check;
+//! 4. each root gives `t` by the pivot equation (article §4.4); it is kept if the 3-D residual
+//!    `|S(u, v) − R(t)|` passes [`HIT_RESIDUAL_REL`] and `t` is the nearest in range.
+
+use std::ops::Range;
+use std::time::Instant;
+
+use glam::{DVec2, DVec3};
+use groebner::{Method, SolveOptions, Verdict, ray_patch_system, solve};
+
+use super::bezier_patch::BezierPatch;
+use super::patch_bvh::PatchBvh;
+use super::patch_stats::PatchStats;
+use super::{Hit, Surface, SurfaceGeometry, SurfaceKind};
+use crate::geometry::{Bounds3, Ray, gamma};
+use crate::workspace::Workspace;
+
+/// Accepted 3-D residual of a hit, relative to the size of the numbers involved:
+/// `|S(u, v) − R(t)| ≤ HIT_RESIDUAL_REL · (diag + |O'| + |t'·D|)`, with `diag` the diagonal of
+/// the sub-patch's box and `O'`, `t'` the ray origin and parameter about the box (so the bound
+/// scales with the sub-patch, not with the distance to the camera).
+///
+/// Derivation: the solver accepts `(u, v)` whose relative residual on `F1`, `F2` is at most
+/// about 2⁻³⁰ ≈ 1e-9 (`groebner::DEFAULT_F_TOL_REL`), and `F_a = D_k·(S_a − R_a(t))` by the
+/// construction of article eq. 5, so a true root leaves `|S − R(t)|` of order 1e-9 of the terms'
+/// size. `1e-7` leaves a factor 100 for the conditioning of the pivot division (`|D_k| ≥
+/// |D|/√3`); an extraneous candidate (a root of an eliminant factor with no common `v`) is off
+/// by a macroscopic fraction of the patch and fails by many orders of magnitude.
+pub const HIT_RESIDUAL_REL: f64 = 1e-7;
+
+/// Relative size of the error box reported for a hit point (`SurfaceGeometry::p_err`), per
+/// unit of the sub-patch diagonal plus the point's magnitude. It must exceed both the accepted
+/// residual ([`HIT_RESIDUAL_REL`]) and the solver's root tolerance (`x_tol = 1e-10` in the
+/// parameters, times `|∂S|`), so that a spawned ray moved off the surface by it does not find
+/// the same point again.
+pub const HIT_P_ERR_REL: f64 = 4e-7;
+
+/// Default number of sub-patches per patch side (the teapot's 32 patches become 512 pieces).
+/// Smaller pieces reject more rays by their boxes before any algebra; more pieces cost more
+/// solves for rays near piece boundaries. 4 was the fastest of 1, 2, 4, 8 on `teapot.scene`
+/// (see `paper-notes/bezier-patches.md` §6).
+pub const DEFAULT_SUBDIVISION: usize = 4;
+
+/// Largest subdivision accepted per side.
+pub const MAX_SUBDIVISION: usize = 64;
+
+/// Relative `|∂S/∂u × ∂S/∂v|` below which the normal is taken as degenerate (compared with
+/// `|∂S/∂u|·|∂S/∂v|`, i.e. the sine of the angle between the partials): a collapsed edge such
+/// as the teapot's lid apex, where `∂S/∂u = 0`, or a fold where the partials are parallel.
+const DEGENERATE_NORMAL_REL: f64 = 1e-10;
+
+/// First parameter step of the fallback normal at a degenerate point: the normal is taken at a
+/// point moved this far (then 10×, 100×, …) towards the patch centre, which converges to the
+/// limit normal along the collapsed edge.
+const NORMAL_FALLBACK_STEP: f64 = 1e-6;
+
+/// Control points closer than this, relative to the patch size plus its coordinates'
+/// magnitude, count as one point when detecting a collapsed edge (the `.bpt` data repeat the
+/// apex exactly; the margin covers de Casteljau rounding in sub-patches).
+const COLLAPSED_EDGE_REL: f64 = 1e-12;
+
+/// Gauss–Newton iterations to recover `(u, v)` of a hit point in shading.
+const PROJECT_STEPS: usize = 24;
+
+/// How `v` is eliminated for every ray (`Method =` in the scene, `--patch-method` on the CLI).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum PatchMethod {
+    /// Stam's two-polynomial Gröbner reduction (article §4.2, `groebner::Method::Stam`).
+    #[default]
+    Groebner,
+    /// Kajiya's resultant `Res_v(F1, F2)` (`groebner::Method::Resultant`).
+    Resultant,
+}
+
+impl PatchMethod {
+    /// The scene-file spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            PatchMethod::Groebner => "GROEBNER",
+            PatchMethod::Resultant => "RESULTANT",
+        }
+    }
+
+    /// Parses a scene-file or CLI spelling (case-insensitive).
+    pub fn parse(s: &str) -> Option<Self> {
+        if s.eq_ignore_ascii_case("GROEBNER") {
+            Some(PatchMethod::Groebner)
+        } else if s.eq_ignore_ascii_case("RESULTANT") {
+            Some(PatchMethod::Resultant)
+        } else {
+            None
+        }
+    }
+
+    fn solver_method(self) -> Method {
+        match self {
+            PatchMethod::Groebner => Method::Stam,
+            PatchMethod::Resultant => Method::Resultant,
+        }
+    }
+}
+
+/// One piece of a patch, ready for the per-ray algebra.
+#[derive(Clone, Debug)]
+struct SubPatch {
+    /// Index of the patch it comes from.
+    parent: u32,
+    /// Its parameter window in the parent: `u0 + (u1 − u0)·s`.
+    u: [f64; 2],
+    /// `v0 + (v1 − v0)·r`.
+    v: [f64; 2],
+    /// Centre of its box: the origin of `power`.
+    centre: DVec3,
+    /// Power-basis coefficients about `centre` (`u^i v^j` at `j * (n + 1) + i`).
+    power: Vec<[f64; 3]>,
+    /// `n + 1`.
+    stride: usize,
+    /// `m + 1`.
+    rows: usize,
+    /// The control-point box, slightly padded.
+    bounds: Bounds3,
+    /// Its diagonal.
+    diag: f64,
+    /// Collapsed edges: a point (about `centre`) that a whole edge maps to, with the local
+    /// parameters of the edge's midpoint (the teapot's lid apex and bottom centre).
+    collapsed: Vec<(DVec3, f64, f64)>,
+}
+
+impl SubPatch {
+    fn new(parent: u32, patch: &BezierPatch, u: [f64; 2], v: [f64; 2]) -> Self {
+        let piece = patch.sub_patch(u, v);
+        let b = piece.bounds();
+        let centre = (b.min + b.max) * 0.5;
+        let diag = b.diagonal();
+        // Pad by the rounding of the de Casteljau steps (a flat patch's box has zero width,
+        // and the slab test must still see it).
+        let pad = DVec3::splat(gamma(16) * (b.min.abs().max(b.max.abs()).max_element() + diag));
+        let mut power: Vec<[f64; 3]> = piece.power_coeffs().iter().map(|c| c.to_array()).collect();
+        for k in 0..3 {
+            power[0][k] -= centre[k];
+        }
+        let [n, m] = piece.degree();
+        let collapsed = collapsed_edges(&piece)
+            .into_iter()
+            .map(|(c, s, r)| (c - centre, s, r))
+            .collect();
+        SubPatch {
+            parent,
+            u,
+            v,
+            centre,
+            power,
+            stride: n + 1,
+            rows: m + 1,
+            bounds: Bounds3::new(b.min - pad, b.max + pad),
+            diag,
+            collapsed,
+        }
+    }
+
+    /// `S(s, r)` about `centre`, with partials, by nested Horner.
+    fn eval(&self, s: f64, r: f64) -> (DVec3, DVec3, DVec3) {
+        let (mut p, mut ps, mut pr) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+        for row in self.power.chunks_exact(self.stride).rev() {
+            let (mut a, mut da) = (DVec3::ZERO, DVec3::ZERO);
+            for c in row.iter().rev() {
+                da = da * s + a;
+                a = a * s + DVec3::from_array(*c);
+            }
+            pr = pr * r + p;
+            p = p * r + a;
+            ps = ps * r + da;
+        }
+        (p, ps, pr)
+    }
+
+    /// Parent parameters of local `(s, r)`.
+    fn to_parent(&self, s: f64, r: f64) -> (f64, f64) {
+        let u = self.u[0] + (self.u[1] - self.u[0]) * s;
+        let v = self.v[0] + (self.v[1] - self.v[0]) * r;
+        (u.clamp(0.0, 1.0), v.clamp(0.0, 1.0))
+    }
+}
+
+/// The edges of `patch` whose control points all coincide (to [`COLLAPSED_EDGE_REL`] of the
+/// patch size), as `(point, s, r)` with `(s, r)` the edge's midpoint parameters.
+///
+/// Such an edge maps to one point, so a ray through that point meets the patch along a whole
+/// parameter line: `F1`, `F2` share the factor of that line (a factor `u^k` of the resultant),
+/// the algebra reports infinitely many roots or a `u`-root with no isolated `v`, and the point
+/// must be found directly.
+fn collapsed_edges(patch: &BezierPatch) -> Vec<(DVec3, f64, f64)> {
+    let [n, m] = patch.degree();
+    let pts = patch.control_points();
+    let size = patch.bounds().diagonal();
+    let tol =
+        COLLAPSED_EDGE_REL * (size + pts.iter().fold(0.0f64, |a, p| a.max(p.abs().max_element())));
+    let mut out = Vec::new();
+    let mut edge = |idx: Vec<usize>, s: f64, r: f64| {
+        let first = pts[idx[0]];
+        if idx
+            .iter()
+            .all(|&k| (pts[k] - first).abs().max_element() <= tol)
+        {
+            out.push((first, s, r));
+        }
+    };
+    edge((0..=m).collect(), 0.0, 0.5); // u = 0: row i = 0
+    edge((0..=m).map(|j| n * (m + 1) + j).collect(), 1.0, 0.5); // u = 1
+    edge((0..=n).map(|i| i * (m + 1)).collect(), 0.5, 0.0); // v = 0: column j = 0
+    edge((0..=n).map(|i| i * (m + 1) + m).collect(), 0.5, 1.0); // v = 1
+    out
+}
+
+/// The nearest intersection of a ray with one patch of a mesh.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PatchHit {
+    /// Ray parameter.
+    pub t: f64,
+    /// Index of the patch in the mesh.
+    pub patch: usize,
+    /// Patch parameters of the hit.
+    pub uv: DVec2,
+}
+
+/// A set of Bézier patches traced as one surface, through a BVH of sub-patches.
+#[derive(Clone, Debug)]
+pub struct BezierMesh {
+    patches: Vec<BezierPatch>,
+    pieces: Vec<SubPatch>,
+    bvh: PatchBvh,
+    bounds: Bounds3,
+    method: PatchMethod,
+    solve_opts: SolveOptions,
+}
+
+impl BezierMesh {
+    /// The mesh of `patches` traced with `method`, each patch cut into
+    /// [`DEFAULT_SUBDIVISION`]² pieces. `None` for an empty list.
+    pub fn new(patches: Vec<BezierPatch>, method: PatchMethod) -> Option<Self> {
+        Self::with_subdivision(patches, method, DEFAULT_SUBDIVISION)
+    }
+
+    /// As [`BezierMesh::new`] with `k × k` pieces per patch (`k` clamped to
+    /// `1..=MAX_SUBDIVISION`).
+    pub fn with_subdivision(
+        patches: Vec<BezierPatch>,
+        method: PatchMethod,
+        k: usize,
+    ) -> Option<Self> {
+        if patches.is_empty() {
+            return None;
+        }
+        let k = k.clamp(1, MAX_SUBDIVISION);
+        let step = 1.0 / k as f64;
+        let mut pieces = Vec::with_capacity(patches.len() * k * k);
+        for (index, patch) in patches.iter().enumerate() {
+            for a in 0..k {
+                for b in 0..k {
+                    let u = [
+                        a as f64 * step,
+                        if a + 1 == k {
+                            1.0
+                        } else {
+                            (a + 1) as f64 * step
+                        },
+                    ];
+                    let v = [
+                        b as f64 * step,
+                        if b + 1 == k {
+                            1.0
+                        } else {
+                            (b + 1) as f64 * step
+                        },
+                    ];
+                    pieces.push(SubPatch::new(index as u32, patch, u, v));
+                }
+            }
+        }
+        let boxes: Vec<Bounds3> = pieces.iter().map(|p| p.bounds).collect();
+        let bounds = boxes.iter().skip(1).fold(boxes[0], |a, b| a.union(b));
+        let solve_opts = SolveOptions {
+            method: method.solver_method(),
+            ..SolveOptions::default()
+        };
+        Some(BezierMesh {
+            bvh: PatchBvh::new(&boxes),
+            patches,
+            pieces,
+            bounds,
+            method,
+            solve_opts,
+        })
+    }
+
+    /// The patches.
+    pub fn patches(&self) -> &[BezierPatch] {
+        &self.patches
+    }
+
+    /// The elimination method.
+    pub fn method(&self) -> PatchMethod {
+        self.method
+    }
+
+    /// The same mesh traced with another method.
+    pub fn set_method(&mut self, method: PatchMethod) {
+        self.method = method;
+        self.solve_opts.method = method.solver_method();
+    }
+
+    /// The nearest hit with `t` in `t_range` (open), with its patch and parameters; counts in
+    /// `stats`. With `any`, stops at the first hit found (shadow rays).
+    pub fn nearest_hit(
+        &self,
+        ray: &Ray,
+        t_range: Range<f64>,
+        stats: &mut PatchStats,
+        any: bool,
+    ) -> Option<(PatchHit, u32)> {
+        let mut best: Option<(PatchHit, u32)> = None;
+        let mut misses = 0;
+        self.bvh.traverse(
+            ray,
+            t_range.start,
+            t_range.end,
+            &mut misses,
+            |item, t_max| {
+                let piece = &self.pieces[item as usize];
+                if let Some((t, s, r)) = self.test_piece(piece, ray, t_range.start..t_max, stats) {
+                    let (u, v) = piece.to_parent(s, r);
+                    best = Some((
+                        PatchHit {
+                            t,
+                            patch: piece.parent as usize,
+                            uv: DVec2::new(u, v),
+                        },
+                        item,
+                    ));
+                    if any {
+                        return None;
+                    }
+                    return Some(t);
+                }
+                Some(t_max)
+            },
+        );
+        stats.bbox_rejects += misses;
+        best
+    }
+
+    /// One ray/sub-patch test: `(t, s, r)` of the nearest verified root in range.
+    fn test_piece(
+        &self,
+        piece: &SubPatch,
+        ray: &Ray,
+        range: Range<f64>,
+        stats: &mut PatchStats,
+    ) -> Option<(f64, f64, f64)> {
+        let Some(seg) = piece.bounds.intersect_ray(ray, range.clone()) else {
+            stats.bbox_rejects += 1;
+            return None;
+        };
+        let start = Instant::now();
+        let found = self.solve_piece(piece, ray, seg.start, range, stats);
+        stats.test_nanos += start.elapsed().as_nanos() as u64;
+        found
+    }
+
+    fn solve_piece(
+        &self,
+        piece: &SubPatch,
+        ray: &Ray,
+        t0: f64,
+        range: Range<f64>,
+        stats: &mut PatchStats,
+    ) -> Option<(f64, f64, f64)> {
+        stats.solves += 1;
+        // Step 1: origin at the box entry, about the box centre.
+        let o = ray.at(t0) - piece.centre;
+        let d = ray.dir;
+        // Step 2: F1, F2 (article eq. 5), pivot = largest |D_k|.
+        let Ok(sys) = ray_patch_system(
+            &piece.power,
+            piece.stride,
+            piece.rows,
+            &o.to_array(),
+            &d.to_array(),
+        ) else {
+            stats.errors += 1;
+            return None;
+        };
+        // Step 3: eliminate v and solve in [0, 1]².
+        let solve_start = Instant::now();
+        let solved = solve(&sys.f1, &sys.f2, &self.solve_opts);
+        stats.solve_nanos += solve_start.elapsed().as_nanos() as u64;
+        let sol = match solved {
+            Ok(sol) => sol,
+            Err(_) => {
+                stats.errors += 1;
+                return None;
+            }
+        };
+        let st = sol.stats;
+        stats.record_degrees(st.basis_size, st.u_degree, st.v_degree);
+        stats.rejected_by_solver += st.rejected as u64;
+        match sol.verdict {
+            Verdict::NoCommonRoot => stats.no_common_root += 1,
+            Verdict::Infinite => stats.infinite += 1,
+            _ => {}
+        }
+        // Step 4: t by the pivot equation, 3-D residual, nearest in range.
+        let mut best: Option<(f64, f64, f64)> = None;
+        for root in &sol.roots {
+            let s = sys.t_at(&root.u, &root.v);
+            let t = t0 + s;
+            let t_max = best.map_or(range.end, |b| b.0);
+            if !(t > range.start && t < t_max) {
+                stats.outside_range += 1;
+                continue;
+            }
+            let (p, _, _) = piece.eval(root.u, root.v);
+            let q = o + d * s;
+            let scale = piece.diag + o.length() + (d * s).length();
+            let residual = (p - q).length();
+            if residual.is_nan() || residual > HIT_RESIDUAL_REL * scale {
+                stats.rejected_by_residual += 1;
+                continue;
+            }
+            best = Some((t, root.u, root.v));
+        }
+        // A ray through a collapsed edge's point: the algebra sees a whole common line there
+        // and reports no isolated root (see `collapsed_edges`), so test the point itself.
+        for &(c, cs, cr) in &piece.collapsed {
+            let s = (c - o).dot(d) / d.length_squared();
+            let q = o + d * s;
+            let t = t0 + s;
+            let scale = piece.diag + o.length() + (d * s).length();
+            let t_max = best.map_or(range.end, |b| b.0);
+            if (q - c).length() <= HIT_RESIDUAL_REL * scale && t > range.start && t < t_max {
+                best = Some((t, cs, cr));
+            }
+        }
+        best
+    }
+
+    /// `(u, v)` in piece `item` of the point `p` (about the mesh's coordinates), by
+    /// Gauss–Newton on `|S(s, r) − p|²` from the piece's centre and corners; the best start wins.
+    fn project(&self, item: usize, p: DVec3) -> (f64, f64) {
+        let piece = &self.pieces[item];
+        let target = p - piece.centre;
+        let mut best = (f64::INFINITY, 0.5, 0.5);
+        for &(s0, r0) in &[(0.5, 0.5), (0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)] {
+            let (mut s, mut r) = (s0, r0);
+            for _ in 0..PROJECT_STEPS {
+                let (q, qs, qr) = piece.eval(s, r);
+                let e = target - q;
+                let (a, b, c) = (qs.dot(qs), qs.dot(qr), qr.dot(qr));
+                let (gs, gr) = (qs.dot(e), qr.dot(e));
+                let det = a * c - b * b;
+                if det.is_nan() || det <= 0.0 || !det.is_finite() {
+                    break;
+                }
+                let ds = (c * gs - b * gr) / det;
+                let dr = (a * gr - b * gs) / det;
+                s = (s + ds).clamp(-0.01, 1.01);
+                r = (r + dr).clamp(-0.01, 1.01);
+                if ds.abs() + dr.abs() < 1e-15 {
+                    break;
+                }
+            }
+            let err = (piece.eval(s, r).0 - target).length();
+            if err < best.0 {
+                best = (err, s, r);
+            }
+            if err <= HIT_RESIDUAL_REL * (piece.diag + target.length()) {
+                break;
+            }
+        }
+        piece.to_parent(best.1, best.2)
+    }
+
+    /// The unit normal `∂S/∂u × ∂S/∂v` of patch `index` at `(u, v)`, moved towards the patch
+    /// centre at a collapsed edge (see [`NORMAL_FALLBACK_STEP`]); `None` if no nearby point
+    /// has a normal either.
+    pub fn normal(&self, index: usize, u: f64, v: f64) -> Option<DVec3> {
+        let patch = &self.patches[index];
+        let mut step = 0.0;
+        for _ in 0..6 {
+            let (uu, vv) = (u + (0.5 - u) * step * 2.0, v + (0.5 - v) * step * 2.0);
+            let (_, su, sv) = patch.eval_with_partials(uu, vv);
+            let n = su.cross(sv);
+            let len = n.length();
+            if len.is_finite()
+                && len > DEGENERATE_NORMAL_REL * su.length() * sv.length()
+                && len > 0.0
+            {
+                return Some(n / len);
+            }
+            step = if step == 0.0 {
+                NORMAL_FALLBACK_STEP
+            } else {
+                step * 10.0
+            };
+        }
+        None
+    }
+}
+
+impl Surface for BezierMesh {
+    fn kind(&self) -> SurfaceKind {
+        SurfaceKind::BezierPatch
+    }
+
+    fn bounds(&self) -> Option<Bounds3> {
+        Some(self.bounds)
+    }
+
+    fn intersect(&self, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> Option<Hit> {
+        let (hit, item) = self.nearest_hit(ray, t_range, &mut ws.stats.patches, false)?;
+        let p = ray.at(hit.t);
+        Some(Hit {
+            t: hit.t,
+            p,
+            local: p,
+            tag: item,
+        })
+    }
+
+    fn occluded(&self, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> bool {
+        self.nearest_hit(ray, t_range, &mut ws.stats.patches, true)
+            .is_some()
+    }
+
+    fn shading(&self, hit: &Hit) -> SurfaceGeometry {
+        let p = hit.local;
+        let item = (hit.tag as usize).min(self.pieces.len() - 1);
+        let (u, v) = self.project(item, p);
+        let piece = &self.pieces[item];
+        let size = piece.diag + p.abs().max_element();
+        SurfaceGeometry {
+            p,
+            p_err: DVec3::splat(HIT_P_ERR_REL * size),
+            normal: self.normal(piece.parent as usize, u, v),
+            uv: Some(DVec2::new(u, v)),
+        }
+    }
+}
