@@ -28,7 +28,7 @@ pub const BUCHBERGER_MAX_BASIS: usize = 64;
 ///
 /// Pairs are taken smallest `lcm(LM, LM)` first (Buchberger's "normal strategy"), and pairs
 /// with coprime leading monomials are skipped (Buchberger's first criterion: their
-/// S-polynomial always reduces to zero, article ref. [2]). The computation stops early when a
+/// S-polynomial always reduces to zero, article ref. \[2\]). The computation stops early when a
 /// remainder is a non-zero constant: the basis is then `{1}` (Theorem 1). Zero inputs are
 /// ignored; no input (or only zeros) gives the empty basis.
 ///
@@ -229,7 +229,7 @@ pub(crate) fn reduce_tracked<T: SolveScalar>(mut g: Vec<Tracked<T>>) -> Vec<BiPo
 }
 
 /// True when `basis` is a Gröbner basis of the ideal it generates (Buchberger's criterion:
-/// every S-polynomial of two elements has normal form zero, article ref. [1]).
+/// every S-polynomial of two elements has normal form zero, article ref. \[1\]).
 ///
 /// # Exactness
 /// Exact over `Rat`. Over `f64` "zero" is the crate's relative zero rule.

@@ -153,7 +153,8 @@ pub struct SolveStats {
     /// Exact mode only: the largest coefficient, in bits, of the basis elements or resultant,
     /// each scaled to a primitive integer polynomial (coprime integer coefficients).
     pub coeff_bits: Option<u64>,
-    /// Real roots of the `u`-polynomial in the (widened) `u`-range.
+    /// `u` candidates: real roots of the `u`-polynomial in the (widened) `u`-range, plus, in
+    /// `f64` mode, its near-double roots.
     pub u_roots: usize,
     /// `(u, v)` candidates rejected by the residual test (extraneous factors, complex `v`).
     pub rejected: usize,
@@ -177,6 +178,9 @@ pub struct Solution {
 ///    root (Theorem 1).
 /// 2. Real roots `u_r` of that polynomial in the `u`-range widened by `x_tol`, by
 ///    `poly`'s certified isolation and refinement (exact rational isolation in exact mode).
+///    In `f64` mode, critical points where the polynomial nearly vanishes are added as
+///    candidates: two hits with the same `u` make a double root, which rounding can turn into
+///    a complex pair (see `NEAR_DOUBLE_REL`).
 /// 3. For each `u_r`, candidates `v`: the real roots in the widened `v`-range of the first of
 ///    the basis elements involving `v` (lowest `Deg_v` first, then `F1` and `F2`; for
 ///    resultants `F1`, `F2`) that does not vanish identically at `u_r`. The roots of the common
@@ -417,7 +421,9 @@ fn eliminate_resultant<T: SolveScalar>(
         _ => sylvester_resultant_v(f1, f2)?,
     };
     let res = if T::EXACT { res } else { res.trim_negligible() };
-    stats.coeff_bits = T::coeff_bits(&BiPoly::from_poly_u(&res));
+    if T::EXACT {
+        stats.coeff_bits = T::coeff_bits(&BiPoly::from_poly_u(&res));
+    }
     if res.is_zero() {
         // A common factor involving v.
         return Ok(Elimination::Verdict(Verdict::Infinite));
