@@ -1,0 +1,2 @@
+//! Run time against error (placeholder while the stability suite is built).
+fn main() {}

@@ -1,0 +1,62 @@
+//! Wall-clock timing for the report binaries (criterion is used for the benches proper).
+
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+/// Mean nanoseconds per call of `f`: calls it at least once and then repeatedly until
+/// `budget` has elapsed, so short calls are averaged over many runs and long ones run once.
+pub fn nanos_per_call<R>(budget: Duration, mut f: impl FnMut() -> R) -> f64 {
+    let start = Instant::now();
+    let mut calls = 0u64;
+    loop {
+        black_box(f());
+        calls += 1;
+        if start.elapsed() >= budget {
+            break;
+        }
+    }
+    start.elapsed().as_nanos() as f64 / calls as f64
+}
+
+/// A duration in nanoseconds in the most readable unit (`812 ns`, `3.4 µs`, `12 ms`, `1.3 s`).
+pub fn human_nanos(ns: f64) -> String {
+    if ns < 1e3 {
+        format!("{ns:.0} ns")
+    } else if ns < 1e6 {
+        format!("{:.3} µs", ns / 1e3)
+    } else if ns < 1e9 {
+        format!("{:.3} ms", ns / 1e6)
+    } else {
+        format!("{:.3} s", ns / 1e9)
+    }
+    .replace(".000 ", " ")
+}
+
+/// The machine as `lscpu`/`nproc` describe it: `"2-core x86_64, AMD EPYC"` (best effort).
+pub fn machine() -> String {
+    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
+    let model = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split_once(':'))
+                .map(|(_, m)| m.trim().to_owned())
+        })
+        .unwrap_or_else(|| "unknown CPU".to_owned());
+    format!("{cores}-core {}, {model}", std::env::consts::ARCH)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn units_are_chosen_by_size() {
+        assert_eq!(human_nanos(812.0), "812 ns", "ns");
+        assert_eq!(human_nanos(3400.0), "3.400 µs", "µs");
+        assert_eq!(human_nanos(2e6), "2 ms", "whole ms");
+        let ns = nanos_per_call(Duration::from_micros(50), || 1 + 1);
+        assert!(ns > 0.0 && ns < 50_000.0, "many calls in 50 µs: {ns}");
+    }
+}
