@@ -151,6 +151,8 @@ struct SubPatch {
     /// Collapsed edges: a point (about `centre`) that a whole edge maps to, with the local
     /// parameters of the edge's midpoint (the teapot's lid apex and bottom centre).
     collapsed: Vec<(DVec3, f64, f64)>,
+    /// The control points about `centre` (the Bernstein coefficients, for the hull test).
+    control: Vec<DVec3>,
 }
 
 impl SubPatch {
@@ -182,6 +184,7 @@ impl SubPatch {
             bounds: Bounds3::new(b.min - pad, b.max + pad),
             diag,
             collapsed,
+            control: piece.control_points().iter().map(|p| *p - centre).collect(),
         }
     }
 
@@ -238,6 +241,49 @@ fn collapsed_edges(patch: &BezierPatch) -> Vec<(DVec3, f64, f64)> {
     edge((0..=n).map(|i| i * (m + 1) + m).collect(), 0.5, 1.0); // v = 1
     out
 }
+
+/// Whether the ray `o + t·d` (about the piece's centre) certainly misses the piece: all its
+/// control points lie strictly on one side of one of two planes containing the ray.
+///
+/// Those planes are `F1 = 0` and `F2 = 0` of article eq. 5 in space: `F_a(u, v) = n_a·(S(u, v)
+/// − o)` with `n_a = D_k e_a − D_a e_k`, so `n_a·(P_ij − o)` are `F_a`'s Bernstein coefficients
+/// and, by the convex-hull property, `F_a` has no zero on `[0, 1]²` when they share a strict
+/// sign. An exact, conservative test (the margin [`HULL_MARGIN_REL`] only keeps borderline
+/// cases for the algebra), much tighter than the box for thin curved pieces.
+fn misses_hull(piece: &SubPatch, o: DVec3, d: DVec3) -> bool {
+    let a = d.abs();
+    let k = if a.x >= a.y && a.x >= a.z {
+        0
+    } else if a.y >= a.z {
+        1
+    } else {
+        2
+    };
+    let scale = HULL_MARGIN_REL * (piece.diag + o.length()) * d.length();
+    for axis in 0..3 {
+        if axis == k {
+            continue;
+        }
+        let mut n = DVec3::ZERO;
+        n[axis] = d[k];
+        n[k] = -d[axis];
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for p in &piece.control {
+            let f = n.dot(*p - o);
+            lo = lo.min(f);
+            hi = hi.max(f);
+        }
+        if lo > scale || hi < -scale {
+            return true;
+        }
+    }
+    false
+}
+
+/// Margin of the hull test, relative to the piece size plus the origin's distance times `|D|`:
+/// a plane that passes within this of a control point does not reject (rounding of the dot
+/// products is about `γ(4)` of the same scale).
+const HULL_MARGIN_REL: f64 = 1e-9;
 
 /// The nearest intersection of a ray with one patch of a mesh.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -402,10 +448,14 @@ impl BezierMesh {
         range: Range<f64>,
         stats: &mut PatchStats,
     ) -> Option<(f64, f64, f64)> {
-        stats.solves += 1;
         // Step 1: origin at the box entry, about the box centre.
         let o = ray.at(t0) - piece.centre;
         let d = ray.dir;
+        if misses_hull(piece, o, d) {
+            stats.hull_rejects += 1;
+            return None;
+        }
+        stats.solves += 1;
         // Step 2: F1, F2 (article eq. 5), pivot = largest |D_k|.
         let Ok(sys) = ray_patch_system(
             &piece.power,

@@ -126,8 +126,22 @@ impl PatchBvh {
                     }
                 }
                 Node::Inner { left, right, axis } => {
-                    // Push the far child first so the near one is visited first.
-                    let (near, far) = if ray.dir[axis as usize] >= 0.0 {
+                    // Push the far child first so the near one is visited first: by where the
+                    // ray enters each box (ties and misses by the split axis), so that the
+                    // nearest hit is found early and prunes the rest.
+                    let entry = |n: u32| {
+                        self.nodes[n as usize]
+                            .0
+                            .intersect_ray(ray, t_min..t_max)
+                            .map_or(f64::INFINITY, |r| r.start)
+                    };
+                    let (tl, tr) = (entry(left), entry(right));
+                    let left_first = if tl == tr {
+                        ray.dir[axis as usize] >= 0.0
+                    } else {
+                        tl < tr
+                    };
+                    let (near, far) = if left_first {
                         (left, right)
                     } else {
                         (right, left)

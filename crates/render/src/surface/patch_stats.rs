@@ -15,6 +15,9 @@ pub struct PatchStats {
     pub solves: u64,
     /// Ray/sub-patch pairs rejected by a box of the patch BVH before any algebra.
     pub bbox_rejects: u64,
+    /// Ray/sub-patch pairs whose box the ray crosses but whose control-point hull lies on one
+    /// side of a plane through the ray (no algebra needed).
+    pub hull_rejects: u64,
     /// Histogram of the Gröbner basis size (0 for the resultant method).
     pub basis_size: [u64; HIST_BINS],
     /// Histogram of the degree of the `u`-polynomial (eliminant or resultant; 0 when the
@@ -58,6 +61,7 @@ impl PatchStats {
     pub fn merge(&mut self, o: &PatchStats) {
         self.solves += o.solves;
         self.bbox_rejects += o.bbox_rejects;
+        self.hull_rejects += o.hull_rejects;
         for (a, b) in [
             (&mut self.basis_size, &o.basis_size),
             (&mut self.u_degree, &o.u_degree),
@@ -99,6 +103,11 @@ impl fmt::Display for PatchStats {
             f,
             "  BVH box rejections                 {:>12}",
             self.bbox_rejects
+        )?;
+        writeln!(
+            f,
+            "  control-hull rejections            {:>12}",
+            self.hull_rejects
         )?;
         for (name, hist) in [
             ("basis size", &self.basis_size),
