@@ -150,3 +150,49 @@ fn generic_random_bicubic_keeps_degree_18_and_matches_newton() {
         "never above 18: {stats}"
     );
 }
+
+/// The exact-rational reference modes agree with the `f64` methods on a few rays of the
+/// degree-6 patch (exact elimination is slow, hence few rays and a low-degree patch).
+#[test]
+fn exact_reference_modes_agree_with_f64() {
+    let (patch, cam) = scene_patch("patch-deg6");
+    let meshes = [
+        PatchMethod::Groebner,
+        PatchMethod::Resultant,
+        PatchMethod::GroebnerExact,
+        PatchMethod::ResultantExact,
+    ]
+    .map(|m| BezierMesh::new(vec![patch.clone()], m).expect("one patch"));
+    let mut hits = 0;
+    for (x, y) in [
+        (12.5, 12.5),
+        (9.5, 14.5),
+        (15.5, 10.5),
+        (11.5, 17.5),
+        (1.5, 1.5),
+    ] {
+        let ray = cam.ray(x, y);
+        let ts: Vec<Option<f64>> = meshes
+            .iter()
+            .map(|m| {
+                m.nearest_hit(&ray, 0.0..f64::INFINITY, &mut PatchStats::default(), false)
+                    .map(|h| h.0.t)
+            })
+            .collect();
+        hits += usize::from(ts[3].is_some());
+        for (i, t) in ts.iter().enumerate() {
+            assert_eq!(
+                t.is_some(),
+                ts[3].is_some(),
+                "ray ({x}, {y}) method {i}: {ts:?}"
+            );
+            if let (Some(a), Some(b)) = (t, ts[3]) {
+                assert!(
+                    (a - b).abs() <= 1e-9 * b,
+                    "ray ({x}, {y}) method {i}: {ts:?}"
+                );
+            }
+        }
+    }
+    assert!(hits >= 3, "most of these rays hit the patch: {hits}");
+}

@@ -350,3 +350,23 @@ fn teapot_scene_renders_without_nan() {
         "patch statistics are collected"
     );
 }
+
+/// Exact-rational reference on two primary rays: the resultant computed over rationals gives
+/// the same hit as the `f64` resultant (exact elimination of a bicubic takes about a second per
+/// piece in a dev build, hence only two rays).
+#[test]
+fn exact_resultant_agrees_with_f64_on_two_rays() {
+    let patches = teapot_patches();
+    let f = BezierMesh::new(patches.clone(), PatchMethod::Resultant).expect("non-empty");
+    let q = BezierMesh::new(patches, PatchMethod::ResultantExact).expect("non-empty");
+    let cam = teapot_camera(64);
+    for (x, y) in [(30.5, 36.5), (20.5, 20.5)] {
+        let ray = cam.ray(x, y);
+        let mut sq = PatchStats::default();
+        let a = f.nearest_hit(&ray, 0.0..f64::INFINITY, &mut PatchStats::default(), false);
+        let b = q.nearest_hit(&ray, 0.0..f64::INFINITY, &mut sq, false);
+        let (a, b) = (a.expect("f64 hit").0.t, b.expect("exact hit").0.t);
+        assert!(close(a, b), "pixel ({x}, {y}): f64 t = {a}, exact t = {b}");
+        assert!(sq.solves >= 1, "the exact path ran");
+    }
+}

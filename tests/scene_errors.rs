@@ -380,7 +380,7 @@ const CASES: &[Case] = &[
         2,
         38,
         "Method",
-        "invalid `Method`: must be GROEBNER or RESULTANT, found `FAST`",
+        "invalid `Method`: must be GROEBNER, RESULTANT, GROEBNER_EXACT or RESULTANT_EXACT, found `FAST`",
     ),
 ];
 

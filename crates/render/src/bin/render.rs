@@ -53,14 +53,14 @@ struct RawArgs {
     /// Output transfer function: `srgb` or a power-law gamma such as `2.2` (`1` for linear).
     #[arg(long, default_value = "srgb", value_parser = parse_gamma)]
     gamma: Gamma,
-    /// Elimination method for every Bézier patch (`groebner` or `resultant`), overriding the
-    /// scene's `Method`.
+    /// Elimination method for every Bézier patch (`groebner`, `resultant`, or the exact-rational
+    /// references `groebner-exact`, `resultant-exact`), overriding the scene's `Method`.
     #[arg(long, value_name = "METHOD", value_parser = parse_patch_method)]
     patch_method: Option<PatchMethod>,
 }
 
 fn parse_patch_method(s: &str) -> Result<PatchMethod, String> {
-    PatchMethod::parse(s).ok_or_else(|| format!("expected `groebner` or `resultant`, got `{s}`"))
+    PatchMethod::parse(s).ok_or_else(|| format!("expected groebner, resultant, groebner-exact or resultant-exact, got `{s}`"))
 }
 
 fn parse_size(s: &str) -> Result<[u32; 2], String> {

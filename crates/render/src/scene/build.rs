@@ -995,7 +995,8 @@ fn build_shape(f: &Fields<'_>, shape: ShapeType, base: &Path) -> Result<ShapeKin
     })
 }
 
-/// `Control points = FILE` (read relative to the scene) and `Method = GROEBNER | RESULTANT`
+/// `Control points = FILE` (read relative to the scene) and `Method = GROEBNER | RESULTANT |
+/// GROEBNER_EXACT | RESULTANT_EXACT`
 /// of a Bézier patch or mesh; errors in the file name the file and its line.
 fn read_patches(
     f: &Fields<'_>,
@@ -1009,7 +1010,9 @@ fn read_patches(
             invalid(
                 span,
                 Key::Method,
-                format!("must be GROEBNER or RESULTANT, found `{word}`"),
+                format!(
+                    "must be GROEBNER, RESULTANT, GROEBNER_EXACT or RESULTANT_EXACT, found `{word}`"
+                ),
             )
         })?,
     };

@@ -8,7 +8,8 @@
 //! #object
 //! Type = BEZIER_PATCH
 //! Control points = saddle.pts   // Stam's form: 16 lines `x y z`, P[0][0] P[0][1] … P[3][3]
-//! Method = GROEBNER             // or RESULTANT (default GROEBNER)
+//! Method = GROEBNER             // or RESULTANT; GROEBNER_EXACT, RESULTANT_EXACT for
+//!                               // exact-rational reference renders (default GROEBNER)
 //!
 //! #object
 //! Type = BEZIER_MESH
@@ -34,6 +35,7 @@ use std::time::Instant;
 
 use glam::{DVec2, DVec3};
 use groebner::{Method, SolveOptions, Verdict, ray_patch_system, solve};
+use poly::{Rat, Scalar};
 
 use super::bezier_patch::BezierPatch;
 use super::patch_bvh::PatchBvh;
@@ -97,6 +99,12 @@ pub enum PatchMethod {
     Groebner,
     /// Kajiya's resultant `Res_v(F1, F2)` (`groebner::Method::Resultant`).
     Resultant,
+    /// [`PatchMethod::Groebner`] over exact rationals: reference renders (slow: seconds per
+    /// ray on a bicubic).
+    GroebnerExact,
+    /// [`PatchMethod::Resultant`] over exact rationals: reference renders (slow: about 0.3 s
+    /// per bicubic piece, release build).
+    ResultantExact,
 }
 
 impl PatchMethod {
@@ -105,24 +113,37 @@ impl PatchMethod {
         match self {
             PatchMethod::Groebner => "GROEBNER",
             PatchMethod::Resultant => "RESULTANT",
+            PatchMethod::GroebnerExact => "GROEBNER_EXACT",
+            PatchMethod::ResultantExact => "RESULTANT_EXACT",
         }
+    }
+
+    /// Whether the algebra runs over exact rationals.
+    pub fn is_exact(self) -> bool {
+        matches!(
+            self,
+            PatchMethod::GroebnerExact | PatchMethod::ResultantExact
+        )
     }
 
     /// Parses a scene-file or CLI spelling (case-insensitive).
     pub fn parse(s: &str) -> Option<Self> {
-        if s.eq_ignore_ascii_case("GROEBNER") {
-            Some(PatchMethod::Groebner)
-        } else if s.eq_ignore_ascii_case("RESULTANT") {
-            Some(PatchMethod::Resultant)
-        } else {
-            None
-        }
+        [
+            PatchMethod::Groebner,
+            PatchMethod::Resultant,
+            PatchMethod::GroebnerExact,
+            PatchMethod::ResultantExact,
+        ]
+        .into_iter()
+        .find(|m| {
+            m.name().eq_ignore_ascii_case(s) || m.name().replace('_', "-").eq_ignore_ascii_case(s)
+        })
     }
 
     fn solver_method(self) -> Method {
         match self {
-            PatchMethod::Groebner => Method::Stam,
-            PatchMethod::Resultant => Method::Resultant,
+            PatchMethod::Groebner | PatchMethod::GroebnerExact => Method::Stam,
+            PatchMethod::Resultant | PatchMethod::ResultantExact => Method::Resultant,
         }
     }
 }
@@ -284,6 +305,38 @@ fn misses_hull(piece: &SubPatch, o: DVec3, d: DVec3) -> bool {
 /// a plane that passes within this of a control point does not reject (rounding of the dot
 /// products is about `γ(4)` of the same scale).
 const HULL_MARGIN_REL: f64 = 1e-9;
+
+/// The reference path: the same system and solve over exact rationals (every `f64` input is
+/// a rational, so nothing is rounded until the roots are refined to `x_tol`), with `t` from the
+/// pivot equation evaluated exactly at the `f64` roots.
+fn solve_exact(
+    piece: &SubPatch,
+    o: DVec3,
+    d: DVec3,
+    opts: &SolveOptions,
+) -> Result<(groebner::Solution, Vec<f64>), groebner::Error> {
+    let q = |x: f64| Rat::from_f64_exact(x).ok_or(groebner::Error::NonFinite { what: "patch" });
+    let q3 =
+        |v: [f64; 3]| -> Result<[Rat; 3], groebner::Error> { Ok([q(v[0])?, q(v[1])?, q(v[2])?]) };
+    let pts = piece
+        .power
+        .iter()
+        .map(|c| q3(*c))
+        .collect::<Result<Vec<_>, _>>()?;
+    let sys = ray_patch_system(
+        &pts,
+        piece.stride,
+        piece.rows,
+        &q3(o.to_array())?,
+        &q3(d.to_array())?,
+    )?;
+    let sol = solve(&sys.f1, &sys.f2, opts)?;
+    let mut ts = Vec::with_capacity(sol.roots.len());
+    for r in &sol.roots {
+        ts.push(sys.t_at(&q(r.u)?, &q(r.v)?).nearest_f64());
+    }
+    Ok((sol, ts))
+}
 
 /// The nearest intersection of a ray with one patch of a mesh.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -456,23 +509,28 @@ impl BezierMesh {
             return None;
         }
         stats.solves += 1;
-        // Step 2: F1, F2 (article eq. 5), pivot = largest |D_k|.
-        let Ok(sys) = ray_patch_system(
-            &piece.power,
-            piece.stride,
-            piece.rows,
-            &o.to_array(),
-            &d.to_array(),
-        ) else {
-            stats.errors += 1;
-            return None;
-        };
-        // Step 3: eliminate v and solve in [0, 1]².
+        // Step 2: F1, F2 (article eq. 5), pivot = largest |D_k|; step 3: eliminate v and
+        // solve in [0, 1]² (over exact rationals in the reference modes).
         let solve_start = Instant::now();
-        let solved = solve(&sys.f1, &sys.f2, &self.solve_opts);
+        let solved = if self.method.is_exact() {
+            solve_exact(piece, o, d, &self.solve_opts)
+        } else {
+            ray_patch_system(
+                &piece.power,
+                piece.stride,
+                piece.rows,
+                &o.to_array(),
+                &d.to_array(),
+            )
+            .and_then(|sys| {
+                let sol = solve(&sys.f1, &sys.f2, &self.solve_opts)?;
+                let ts = sol.roots.iter().map(|r| sys.t_at(&r.u, &r.v)).collect();
+                Ok((sol, ts))
+            })
+        };
         stats.solve_nanos += solve_start.elapsed().as_nanos() as u64;
-        let sol = match solved {
-            Ok(sol) => sol,
+        let (sol, ts): (_, Vec<f64>) = match solved {
+            Ok(x) => x,
             Err(_) => {
                 stats.errors += 1;
                 return None;
@@ -488,8 +546,7 @@ impl BezierMesh {
         }
         // Step 4: t by the pivot equation, 3-D residual, nearest in range.
         let mut best: Option<(f64, f64, f64)> = None;
-        for root in &sol.roots {
-            let s = sys.t_at(&root.u, &root.v);
+        for (root, &s) in sol.roots.iter().zip(&ts) {
             let t = t0 + s;
             let t_max = best.map_or(range.end, |b| b.0);
             if !(t > range.start && t < t_max) {
