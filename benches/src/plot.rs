@@ -1,5 +1,5 @@
 //! SVG line plots for the reports (`plotters`), drawn on log10 axes by hand: values are
-//! plotted as their base-10 logarithm on a linear axis labelled `1e-12`, … , which keeps one
+//! plotted as their base-10 logarithm on a linear axis labelled with the values (`3e-12`), which keeps one
 //! code path for every combination of linear and logarithmic axes.
 
 use std::path::Path;
@@ -57,7 +57,8 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
 
 fn tick_label(v: f64, log: bool) -> String {
     if log {
-        format!("1e{}", v.round() as i64)
+        // Ticks fall at arbitrary log positions: print the value they stand for.
+        format!("{:.0e}", 10f64.powf(v))
     } else if v.abs() >= 1e4 || (v != 0.0 && v.abs() < 1e-2) {
         format!("{v:.0e}")
     } else {
