@@ -65,9 +65,10 @@ pub const HIT_RESIDUAL_REL: f64 = 1e-7;
 pub const HIT_P_ERR_REL: f64 = 4e-7;
 
 /// Default number of sub-patches per patch side (the teapot's 32 patches become 512 pieces).
-/// Smaller pieces reject more rays by their boxes before any algebra; more pieces cost more
-/// solves for rays near piece boundaries. 4 was the fastest of 1, 2, 4, 8 on `teapot.scene`
-/// (see `paper-notes/bezier-patches.md` §6).
+/// Smaller pieces reject more rays by their boxes before any algebra, and the algebra of a
+/// small piece is cheaper; more pieces cost more solves for rays near piece boundaries.
+/// Measured with the resultant on the 32×32 teapot view (release, this machine): 1 piece per
+/// side 2.9 s, 2 → 0.54 s, 4 → 0.40 s (`paper-notes/bezier-patches.md` §4).
 pub const DEFAULT_SUBDIVISION: usize = 4;
 
 /// Largest subdivision accepted per side.
@@ -314,7 +315,7 @@ fn solve_exact(
     o: DVec3,
     d: DVec3,
     opts: &SolveOptions,
-) -> Result<(groebner::Solution, Vec<f64>), groebner::Error> {
+) -> Result<(groebner::Solution, RootTs), groebner::Error> {
     let q = |x: f64| Rat::from_f64_exact(x).ok_or(groebner::Error::NonFinite { what: "patch" });
     let q3 =
         |v: [f64; 3]| -> Result<[Rat; 3], groebner::Error> { Ok([q(v[0])?, q(v[1])?, q(v[2])?]) };
@@ -335,7 +336,14 @@ fn solve_exact(
     for r in &sol.roots {
         ts.push(sys.t_at(&q(r.u)?, &q(r.v)?).nearest_f64());
     }
-    Ok((sol, ts))
+    Ok((sol, RootTs::Exact(ts)))
+}
+
+/// How the `t` of each root is found: the `f64` system's pivot equation (no allocation), or
+/// the values the exact path computed.
+enum RootTs {
+    Pivot(groebner::RayPatchSystem<f64>),
+    Exact(Vec<f64>),
 }
 
 /// The nearest intersection of a ray with one patch of a mesh.
@@ -524,12 +532,11 @@ impl BezierMesh {
             )
             .and_then(|sys| {
                 let sol = solve(&sys.f1, &sys.f2, &self.solve_opts)?;
-                let ts = sol.roots.iter().map(|r| sys.t_at(&r.u, &r.v)).collect();
-                Ok((sol, ts))
+                Ok((sol, RootTs::Pivot(sys)))
             })
         };
         stats.solve_nanos += solve_start.elapsed().as_nanos() as u64;
-        let (sol, ts): (_, Vec<f64>) = match solved {
+        let (sol, ts) = match solved {
             Ok(x) => x,
             Err(_) => {
                 stats.errors += 1;
@@ -546,7 +553,11 @@ impl BezierMesh {
         }
         // Step 4: t by the pivot equation, 3-D residual, nearest in range.
         let mut best: Option<(f64, f64, f64)> = None;
-        for (root, &s) in sol.roots.iter().zip(&ts) {
+        for (i, root) in sol.roots.iter().enumerate() {
+            let s = match &ts {
+                RootTs::Pivot(sys) => sys.t_at(&root.u, &root.v),
+                RootTs::Exact(ts) => ts[i],
+            };
             let t = t0 + s;
             let t_max = best.map_or(range.end, |b| b.0);
             if !(t > range.start && t < t_max) {
@@ -615,8 +626,8 @@ impl BezierMesh {
     }
 
     /// The unit normal `∂S/∂u × ∂S/∂v` of patch `index` at `(u, v)`, moved towards the patch
-    /// centre at a collapsed edge (see [`NORMAL_FALLBACK_STEP`]); `None` if no nearby point
-    /// has a normal either.
+    /// centre at a collapsed edge (a step of `NORMAL_FALLBACK_STEP` = 1e-6, then 10×, …);
+    /// `None` if no nearby point has a normal either.
     pub fn normal(&self, index: usize, u: f64, v: f64) -> Option<DVec3> {
         let patch = &self.patches[index];
         let mut step = 0.0;
