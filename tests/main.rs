@@ -17,3 +17,9 @@ mod bezier_teapot;
 // Bézier patches: Stam's table (degrees 2, 4, 6 in u, 1 in v), the saddle's collapse 18 → 2,
 // a random bicubic at degree 18.
 mod bezier_degrees;
+// Stability (issue 6): exact Sturm on Wilkinson-20 and Chebyshev-30.
+mod stability_exact;
+// Stability (issue 6): the certified f64 default on planted roots (d ≤ 16) and every family.
+mod stability_f64;
+// Stability (issue 6): torus and Barth ray polynomials at camera distance 10 000.
+mod stability_rays;

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Wall time of POV-Ray 3.7 against our `render` on the same scenes, in one run:
+#   benches/vs-povray.sh [SIZE]        (default 840: SIZE x SIZE pixels, no anti-aliasing)
+# Scenes: torus, whitted-torus, barth (scenes/*.scene and their equivalents benches/pov/*.pov).
+# Both renderers get every core (`nproc`). Prints each wall time and the ratio ours / POV-Ray.
+# Without POV-Ray it says so and exits 0. Images go to a temporary directory, printed at the end.
+set -euo pipefail
+
+size=${1:-840}
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(dirname "$here")
+
+if ! command -v povray >/dev/null 2>&1; then
+    echo "POV-Ray is missing (apt-get install povray): nothing to compare."
+    exit 0
+fi
+
+threads=$(nproc)
+target=${CARGO_TARGET_DIR:-$root/target}
+(cd "$root" && cargo build --release -q -p render --bin render)
+render="$target/release/render"
+out=$(mktemp -d)
+
+now() { date +%s.%N; }
+
+printf '%-14s %12s %12s %14s\n' scene "POV-Ray (s)" "ours (s)" "ours/POV-Ray"
+for scene in torus whitted-torus barth; do
+    t0=$(now)
+    povray +I"$here/pov/$scene.pov" +O"$out/$scene-povray.png" +W"$size" +H"$size" \
+        -A -D +WT"$threads" >"$out/$scene-povray.log" 2>&1 ||
+        { echo "povray failed on $scene: see $out/$scene-povray.log" >&2; exit 1; }
+    t1=$(now)
+    "$render" "$root/scenes/$scene.scene" -o "$out/$scene-ours.png" --size "${size}x${size}" \
+        --threads "$threads" >"$out/$scene-ours.log" 2>&1 ||
+        { echo "render failed on $scene: see $out/$scene-ours.log" >&2; exit 1; }
+    t2=$(now)
+    awk -v s="$scene" -v a="$t0" -v b="$t1" -v c="$t2" \
+        'BEGIN { p = b - a; o = c - b; printf "%-14s %12.3f %12.3f %14.2f\n", s, p, o, o / p }'
+done
+echo "size ${size}x${size}, $threads threads each; images and logs in $out"
