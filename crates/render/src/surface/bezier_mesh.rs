@@ -64,14 +64,16 @@ pub const HIT_RESIDUAL_REL: f64 = 1e-7;
 /// the same point again.
 pub const HIT_P_ERR_REL: f64 = 4e-7;
 
-/// Default number of sub-patches per patch side (the teapot's 32 patches become 512 pieces).
-/// Smaller pieces reject more rays by their boxes before any algebra, and the algebra of a
-/// small piece is cheaper; more pieces cost more solves for rays near piece boundaries.
-/// Measured with the resultant on the 32×32 teapot view (release, this machine): 1 piece per
-/// side 2.9 s, 2 → 0.54 s, 4 → 0.40 s (`paper-notes/bezier-patches.md` §4).
-pub const DEFAULT_SUBDIVISION: usize = 4;
+/// Default number of sub-patches per patch side (the teapot's 32 patches become 8192 pieces).
+/// Smaller pieces reject more rays by their boxes and hulls before any algebra, and the
+/// algebra of a small piece is cheaper (its eliminant is better conditioned, so `poly` needs
+/// its exact fallback less often); the price is setup time and memory per frame. Measured
+/// with the resultant on `teapot-resultant.scene` at 210² (release, this shared 2-core
+/// machine, noisy): 4 → 16.9–24 s, 8 → 10.3 s, 16 → 5.6 s, 32 → 4.7 s (setup 0.25 s),
+/// 64 → 4.3 s (setup 0.87 s). See `paper-notes/bezier-patches.md` §4.
+pub const DEFAULT_SUBDIVISION: usize = 16;
 
-/// Largest subdivision accepted per side.
+/// Largest subdivision accepted per side (64² pieces per patch).
 pub const MAX_SUBDIVISION: usize = 64;
 
 /// Relative `|∂S/∂u × ∂S/∂v|` below which the normal is taken as degenerate (compared with
