@@ -60,7 +60,9 @@ struct RawArgs {
 }
 
 fn parse_patch_method(s: &str) -> Result<PatchMethod, String> {
-    PatchMethod::parse(s).ok_or_else(|| format!("expected groebner, resultant, groebner-exact or resultant-exact, got `{s}`"))
+    PatchMethod::parse(s).ok_or_else(|| {
+        format!("expected groebner, resultant, groebner-exact or resultant-exact, got `{s}`")
+    })
 }
 
 fn parse_size(s: &str) -> Result<[u32; 2], String> {
