@@ -9,12 +9,14 @@
 //! * [`methods`]: every solver compared — Stam's 1988 `f64` Sturm, our `f64` Sturm, the
 //!   certified Bernstein/Descartes path with each refinement, exact rational Sturm, and a
 //!   companion-matrix eigenvalue baseline (`nalgebra`).
-//! * [`score`]: missed and phantom roots and errors against the truth; [`timing`];
+//! * [`score`]: missed and phantom roots and errors against the truth; [`image`]: pixel-level
+//!   comparison of solver settings against an exact reference; [`timing`];
 //!   [`report`] (Markdown) and [`plot`] (SVG).
 //!
 //! The binaries `stability` and `speed` write `docs/stability.md` and `docs/speed.md`.
 
 pub mod families;
+pub mod image;
 pub mod methods;
 pub mod plot;
 pub mod rays;

@@ -2,8 +2,12 @@
 //! 1e-2 … 1e-14 on a corpus of real ray polynomials (torus and Barth's sextic, restricted at
 //! the bounding-volume entry as `render` does), scored against the certified smallest root.
 //!
-//! `cargo run --release -p toolkit-benches --bin speed` writes `docs/speed.md` (the solver
-//! section) and `docs/speed-pareto.svg`.
+//! Then the image level: per-pixel hits and shadows of torus.scene (also from 1000× farther)
+//! and barth.scene for each solver setting against an exact reference
+//! (`toolkit_benches::image`).
+//!
+//! `cargo run --release -p toolkit-benches --bin speed` writes `docs/speed.md` (the generated
+//! sections; hand-written text after them is kept) and `docs/speed-pareto.svg`.
 
 use std::fmt::Write as _;
 use std::io::Write as _;
@@ -15,6 +19,10 @@ use clap::Parser;
 use poly::{Rat, RefineMethod, RootStats, rat_from_f64};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use render::scene::{CameraSpec, LookAtCamera};
+use toolkit_benches::image::{
+    ImageScene, Origin, SHADOW_EPS_REL, SHADOW_EPS_TOLS, Setting, Shape, diff, trace_image,
+};
 use toolkit_benches::methods::{Method, REFINE_METHODS};
 use toolkit_benches::plot::{Panel, Series, grid_svg};
 use toolkit_benches::rays::{self, RayPoly, SCENE_TORUS};
@@ -48,6 +56,9 @@ struct Args {
     /// Seed of the ray directions.
     #[arg(long, default_value_t = 6)]
     seed: u64,
+    /// Side of the images of the image-level comparison (0 skips it).
+    #[arg(long, default_value_t = 64)]
+    image_size: u32,
     /// Directory for speed.md and speed-pareto.svg.
     #[arg(long, default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs"))]
     out_dir: PathBuf,
@@ -153,11 +164,173 @@ fn plan() -> Vec<(Method, Vec<f64>)> {
     v
 }
 
+/// Marks the end of the generated part of `docs/speed.md`; what follows is kept on rewrite.
+const GENERATED_END: &str = "<!-- generated above; hand-written below is kept -->";
+
+/// The camera and first light of a scene file (look-at cameras only).
+fn scene_view(file: &str) -> Result<(LookAtCamera, glam::DVec3)> {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../scenes")
+        .join(file);
+    let scene = render::scene::load(&path)?;
+    let CameraSpec::LookAt(cam) = scene.camera else {
+        anyhow::bail!("{file}: expected an Eye/LookAt camera");
+    };
+    let light = scene
+        .lights
+        .first()
+        .ok_or_else(|| anyhow::anyhow!("{file}: no light"))?
+        .source;
+    Ok((cam, light))
+}
+
+/// The image-level comparison (see `toolkit_benches::image`).
+fn image_section(size: u32, err: &mut impl std::io::Write) -> Result<String> {
+    let (tcam, tlight) = scene_view("torus.scene")?;
+    let (bcam, blight) = scene_view("barth.scene")?;
+    let torus = ImageScene {
+        name: "torus.scene".to_owned(),
+        shape: Shape::Torus(SCENE_TORUS),
+        camera: tcam,
+        light: tlight,
+    };
+    let far = torus.farther(1000.0, "torus.scene seen from 1000× farther (D ≈ 9 430)");
+    let barth = ImageScene {
+        name: "barth.scene".to_owned(),
+        shape: Shape::Algebraic(rays::barth_sextic(), rays::BARTH_BOX),
+        camera: bcam,
+        light: blight,
+    };
+    let mut md = String::new();
+    let _ = writeln!(
+        md,
+        "## Image level: what the solver changes in a picture\n\n\
+         `render` does not expose a solver choice yet, so this traces, for every pixel of a \
+         {size}×{size} image, the two queries that decide what the pixel shows — the primary \
+         hit and the shadow ray to the first light — with `render`'s camera and the same \
+         restrictions and bounding volumes (`toolkit_benches::image`), swapping only the \
+         solver. The reference is **exact**: each ray's restriction computed in rationals from \
+         the `f64` ray data, smallest root by exact Sturm to one `f64` spacing. *hit/miss*: \
+         pixels hit in one image and missed in the other; *shadow*: pixels hit in both whose \
+         shadow state differs; *speckles*: differing pixels none of whose 8 neighbours \
+         differ; *max depth err*: largest `|t − t_ref|` where both hit. `tol` is absolute in \
+         `t`; the renderer's is `ROOT_X_TOL_REL · size` = {} of the bounding-box diagonal. \
+         *eye* rows restrict the primary ray at the eye (the naive tracer), *entry* rows at the \
+         bounding-volume entry (`render`). Shadow rays start `max({} · size, {}·tol)` past \
+         the hit point (the reference: {1} · size). Single thread; times include restriction and both queries.\n",
+        sci(render::surface::ROOT_X_TOL_REL),
+        sci(SHADOW_EPS_REL),
+        SHADOW_EPS_TOLS
+    );
+    for scene in [&torus, &far, &barth] {
+        let size_obj = scene.shape.size();
+        let renderer_tol = render::surface::ROOT_X_TOL_REL * size_obj;
+        let mut settings: Vec<(String, Setting)> = Vec::new();
+        let entry = |method, x_tol| Setting {
+            method,
+            x_tol,
+            origin: Origin::Entry,
+        };
+        for m in [
+            Method::Stam,
+            Method::SturmF64(RefineMethod::Illinois),
+            Method::Bernstein(RefineMethod::Bisection),
+            Method::Bernstein(RefineMethod::Illinois),
+            Method::Bernstein(RefineMethod::NewtonBisection),
+            Method::Exact,
+            Method::Companion,
+        ] {
+            settings.push(("entry".to_owned(), entry(m, renderer_tol)));
+        }
+        for rel in [1e-3, 1e-6] {
+            settings.push((
+                "entry".to_owned(),
+                entry(Method::Bernstein(RefineMethod::Illinois), rel * size_obj),
+            ));
+        }
+        for m in [
+            Method::Stam,
+            Method::SturmF64(RefineMethod::Illinois),
+            Method::Bernstein(RefineMethod::Illinois),
+            Method::Companion,
+        ] {
+            settings.push((
+                "eye".to_owned(),
+                Setting {
+                    method: m,
+                    x_tol: renderer_tol,
+                    origin: Origin::Eye,
+                },
+            ));
+        }
+        let (reference, ref_time) = trace_image(scene, size, None);
+        let hits = reference.iter().filter(|p| p.depth.is_finite()).count();
+        let _ = writeln!(
+            md,
+            "### {}\n\nReference: {hits} of {} pixels hit; exact reference traced in {:.2} s.\n",
+            scene.name,
+            size * size,
+            ref_time
+        );
+        let mut rows = Vec::new();
+        for (origin, s) in &settings {
+            let (img, secs) = trace_image(scene, size, Some(s));
+            let d = diff(&img, &reference, size);
+            let _ = writeln!(
+                err,
+                "image {:>40} {:>20} {origin:>5} tol {:>7} {:>8.3} s  hit/miss {} shadow {} speckles {} depth {}",
+                scene.name,
+                s.method.name(),
+                sci(s.x_tol),
+                secs,
+                d.hit_miss,
+                d.shadow,
+                d.speckles,
+                sci(d.max_depth_err)
+            );
+            rows.push(vec![
+                s.method.name(),
+                origin.clone(),
+                if s.method == Method::Companion {
+                    "—".to_owned()
+                } else {
+                    sci(s.x_tol)
+                },
+                format!("{:.3} s", secs),
+                format!(
+                    "{} ({:.2} %)",
+                    d.hit_miss,
+                    100.0 * d.hit_miss as f64 / f64::from(size * size)
+                ),
+                d.shadow.to_string(),
+                sci(d.max_depth_err),
+                d.speckles.to_string(),
+            ]);
+        }
+        md.push_str(&table(
+            &[
+                "method",
+                "restricted at",
+                "tol",
+                "time",
+                "hit/miss",
+                "shadow",
+                "max depth err",
+                "speckles",
+            ],
+            &rows,
+        ));
+        let _ = writeln!(md);
+    }
+    Ok(md)
+}
+
 fn main() -> Result<()> {
     let mut args = Args::parse();
     if args.quick {
         args.rays = args.rays.min(100);
         args.budget_ms = args.budget_ms.min(30);
+        args.image_size = args.image_size.min(24);
     }
     let mut cmd = "cargo run --release -p toolkit-benches --bin speed".to_owned();
     let raw: Vec<String> = std::env::args().skip(1).collect();
@@ -256,7 +429,11 @@ fn main() -> Result<()> {
                     human_nanos(p.ns),
                     sci(p.max_err),
                     sci(p.med_err),
-                    p.over_tol.to_string(),
+                    if p.tol.is_nan() {
+                        "—".to_owned()
+                    } else {
+                        p.over_tol.to_string()
+                    },
                     p.wrong.to_string(),
                     p.fallbacks.to_string(),
                 ]
@@ -278,13 +455,16 @@ fn main() -> Result<()> {
         let _ = writeln!(md);
     }
     let _ = writeln!(md, "![error against time per query](speed-pareto.svg)\n");
-    let _ = writeln!(md, "<!-- solver section end -->");
+    if args.image_size > 0 {
+        md.push_str(&image_section(args.image_size, &mut err)?);
+    }
+    let _ = writeln!(md, "{GENERATED_END}");
     let path = args.out_dir.join("speed.md");
-    // Keep any hand-written sections after the generated solver section.
+    // Keep the hand-written sections after the generated ones.
     let kept = std::fs::read_to_string(&path)
         .ok()
         .and_then(|old| {
-            old.split_once("<!-- solver section end -->")
+            old.split_once(GENERATED_END)
                 .map(|(_, rest)| rest.to_owned())
         })
         .unwrap_or_else(|| "\n".to_owned());

@@ -64,6 +64,9 @@ struct Args {
     out_dir: PathBuf,
 }
 
+/// Marks the end of the generated part of `docs/stability.md`; what follows is kept.
+const GENERATED_END: &str = "<!-- generated above; hand-written below is kept -->";
+
 /// One (family, parameter) row: a score per method, and for the torus the construction error.
 struct Row {
     family: Family,
@@ -412,6 +415,11 @@ fn markdown(args: &Args, cmd: &str, rows: &[Row], elapsed: Duration) -> String {
     );
 
     // Per family.
+    let _ = writeln!(
+        md,
+        "[Reading the results](#reading-the-results) (hand-written, at the end) says why each \
+         method breaks where it does.\n"
+    );
     let _ = writeln!(md, "## Per family\n");
     let _ = writeln!(
         md,
@@ -590,7 +598,15 @@ fn main() -> Result<()> {
     }
     let md = markdown(&args, &cmd, &rows, start.elapsed());
     let path = args.out_dir.join("stability.md");
-    write_atomically(&path, &md)?;
+    // Keep the hand-written notes after the generated part.
+    let kept = std::fs::read_to_string(&path)
+        .ok()
+        .and_then(|old| {
+            old.split_once(GENERATED_END)
+                .map(|(_, rest)| rest.to_owned())
+        })
+        .unwrap_or_else(|| "\n".to_owned());
+    write_atomically(&path, &format!("{md}{GENERATED_END}{kept}"))?;
     plots(&args, &rows)?;
     let mut out = std::io::stdout().lock();
     writeln!(out, "wrote {}", path.display())?;
