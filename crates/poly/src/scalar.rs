@@ -160,10 +160,22 @@ mod tests {
             let r = rat_from_f64(x).expect("finite");
             assert_eq!(rat_to_f64(&r), x, "round trip of {x:e} gave {r}");
         }
-        assert_eq!(rat_from_f64(0.5), Some(Rat::new(1.into(), 2.into())), "0.5 = 1/2");
-        assert_eq!(rat_from_f64(-3.0), Some(Rat::from_integer((-3).into())), "-3");
+        assert_eq!(
+            rat_from_f64(0.5),
+            Some(Rat::new(1.into(), 2.into())),
+            "0.5 = 1/2"
+        );
+        assert_eq!(
+            rat_from_f64(-3.0),
+            Some(Rat::from_integer((-3).into())),
+            "-3"
+        );
         assert_eq!(rat_from_f64(f64::NAN), None, "NaN has no rational value");
-        assert_eq!(rat_from_f64(f64::INFINITY), None, "inf has no rational value");
+        assert_eq!(
+            rat_from_f64(f64::INFINITY),
+            None,
+            "inf has no rational value"
+        );
     }
 
     #[test]
@@ -181,7 +193,10 @@ mod tests {
         assert!(!1e-10_f64.is_negligible(&10.0), "1e-10 is above 2^-40 * 10");
         assert!(!f64::NAN.is_negligible(&1.0), "NaN is never negligible");
         let tiny = Rat::new(1.into(), BigInt::one() << 500usize);
-        assert!(!tiny.is_negligible(&Rat::one()), "exact: only zero is negligible");
+        assert!(
+            !tiny.is_negligible(&Rat::one()),
+            "exact: only zero is negligible"
+        );
         assert!(Rat::zero().is_negligible(&Rat::one()), "zero is");
     }
 }

@@ -203,7 +203,11 @@ impl<T: Scalar> Poly<T> {
         }
         r.truncate(dn);
         let r = Self::new(r);
-        let r = if T::EXACT { r } else { trim_relative(r, &scale) };
+        let r = if T::EXACT {
+            r
+        } else {
+            trim_relative(r, &scale)
+        };
         Some((Self::new(q), r))
     }
 
@@ -266,7 +270,9 @@ impl<T: Scalar> Poly<T> {
             return self.make_monic();
         }
         let g = self.gcd(&self.derivative());
-        let (q, _) = self.div_rem(&g).expect("the gcd of a non-zero polynomial is non-zero");
+        let (q, _) = self
+            .div_rem(&g)
+            .expect("the gcd of a non-zero polynomial is non-zero");
         q.make_monic()
     }
 
@@ -283,7 +289,11 @@ impl<T: Scalar> Poly<T> {
         for (k, c) in self.coeffs.iter().enumerate().rev() {
             let len = n - k; // out currently has degree n - k - 2 at most
             for i in (0..len).rev() {
-                let shifted = if i > 0 { out[i - 1].clone() * b } else { T::zero() };
+                let shifted = if i > 0 {
+                    out[i - 1].clone() * b
+                } else {
+                    T::zero()
+                };
                 out[i] = out[i].clone() * a + shifted;
             }
             out[0] = out[0].clone() + c;
@@ -463,16 +473,25 @@ impl QPoly {
             .coeffs
             .iter()
             .fold(num_bigint::BigInt::one(), |l, c| l.lcm(c.denom()));
-        let ints: Vec<num_bigint::BigInt> =
-            self.coeffs.iter().map(|c| (c * Rat::from_integer(lcm.clone())).to_integer()).collect();
-        let g = ints.iter().fold(num_bigint::BigInt::zero(), |g, c| g.gcd(c));
+        let ints: Vec<num_bigint::BigInt> = self
+            .coeffs
+            .iter()
+            .map(|c| (c * Rat::from_integer(lcm.clone())).to_integer())
+            .collect();
+        let g = ints
+            .iter()
+            .fold(num_bigint::BigInt::zero(), |g, c| g.gcd(c));
         let sign = if ints.last().is_some_and(Signed::is_negative) {
             -num_bigint::BigInt::one()
         } else {
             num_bigint::BigInt::one()
         };
         let g = g * sign;
-        Poly::new_raw(ints.into_iter().map(|c| Rat::from_integer(c / &g)).collect())
+        Poly::new_raw(
+            ints.into_iter()
+                .map(|c| Rat::from_integer(c / &g))
+                .collect(),
+        )
     }
 }
 
@@ -490,9 +509,20 @@ mod tests {
     #[test]
     fn new_trims_trailing_zeros_only() {
         let p = Poly::new(vec![0.0, 1.0, 0.0, 0.0]);
-        assert_eq!(p.coeffs(), &[0.0, 1.0], "trailing zeros trimmed, leading kept");
-        assert!(Poly::<f64>::new(vec![0.0, -0.0]).is_zero(), "all-zero is the zero poly");
-        assert_eq!(Poly::<f64>::zero().degree(), 0, "zero has degree 0 by convention");
+        assert_eq!(
+            p.coeffs(),
+            &[0.0, 1.0],
+            "trailing zeros trimmed, leading kept"
+        );
+        assert!(
+            Poly::<f64>::new(vec![0.0, -0.0]).is_zero(),
+            "all-zero is the zero poly"
+        );
+        assert_eq!(
+            Poly::<f64>::zero().degree(),
+            0,
+            "zero has degree 0 by convention"
+        );
     }
 
     #[test]
@@ -503,7 +533,10 @@ mod tests {
         assert_eq!(&(&quo * &b) + &rem, a, "a = q·b + r");
         assert_eq!(rem, qp(&[0]), "x = 1 is a root of 2x³ − 3x + 1");
         assert_eq!(quo, qp(&[-1, 2, 2]), "2x³ − 3x + 1 = (x−1)(2x² + 2x − 1)");
-        assert!(a.div_rem(&QPoly::zero()).is_none(), "division by zero is refused");
+        assert!(
+            a.div_rem(&QPoly::zero()).is_none(),
+            "division by zero is refused"
+        );
     }
 
     #[test]
@@ -520,12 +553,20 @@ mod tests {
     fn gcd_and_square_free_recover_multiplicities() {
         // (x−1)²(x+2)³(x−5)
         let p = QPoly::from_roots(&[q(1), q(1), q(-2), q(-2), q(-2), q(5)]);
-        assert_eq!(p.square_free(), QPoly::from_roots(&[q(1), q(-2), q(5)]), "square-free part");
+        assert_eq!(
+            p.square_free(),
+            QPoly::from_roots(&[q(1), q(-2), q(5)]),
+            "square-free part"
+        );
         let g = p.gcd(&p.derivative());
         assert_eq!(g, QPoly::from_roots(&[q(1), q(-2), q(-2)]), "gcd(p, p')");
         let f = Poly::<f64>::from_roots(&[1.0, 1.0, 3.0]);
         let sf = f.square_free();
-        assert_eq!(sf.degree(), 2, "f64 square-free part of (x−1)²(x−3): {sf:?}");
+        assert_eq!(
+            sf.degree(),
+            2,
+            "f64 square-free part of (x−1)²(x−3): {sf:?}"
+        );
     }
 
     #[test]
@@ -535,10 +576,18 @@ mod tests {
         let c = p.compose_affine(&a, &b);
         for x in [-3, 0, 1, 7] {
             let x = q(x);
-            assert_eq!(c.eval(&x), p.eval(&(a.clone() + b.clone() * x.clone())), "at {x}");
+            assert_eq!(
+                c.eval(&x),
+                p.eval(&(a.clone() + b.clone() * x.clone())),
+                "at {x}"
+            );
         }
         assert_eq!(c.degree(), 3, "degree preserved when b ≠ 0");
-        assert_eq!(p.compose_affine(&q(2), &q(0)), qp(&[19]), "b = 0 gives the constant p(a)");
+        assert_eq!(
+            p.compose_affine(&q(2), &q(0)),
+            qp(&[19]),
+            "b = 0 gives the constant p(a)"
+        );
     }
 
     #[test]
@@ -565,8 +614,16 @@ mod tests {
             );
         }
         // Far from the root the sign is certain; at the root it cannot be.
-        assert_eq!(p.eval_with_error(1.5).certain_sign(), Some(1), "(0.5)^8 > 0");
-        assert_eq!(p.eval_with_error(1.0001).certain_sign(), None, "lost in round-off");
+        assert_eq!(
+            p.eval_with_error(1.5).certain_sign(),
+            Some(1),
+            "(0.5)^8 > 0"
+        );
+        assert_eq!(
+            p.eval_with_error(1.0001).certain_sign(),
+            None,
+            "lost in round-off"
+        );
     }
 
     #[test]
@@ -575,15 +632,28 @@ mod tests {
         let b = p.root_bound().unwrap();
         assert!(b >= 1e3, "bound {b} must contain 1000");
         assert!(b <= 4e3, "Fujiwara keeps the bound within 4× here: {b}");
-        assert!(Poly::new(vec![2.0]).root_bound().is_none(), "constants have no roots");
-        assert!(Poly::new(vec![f64::NAN, 1.0]).root_bound().is_none(), "NaN refused");
+        assert!(
+            Poly::new(vec![2.0]).root_bound().is_none(),
+            "constants have no roots"
+        );
+        assert!(
+            Poly::new(vec![f64::NAN, 1.0]).root_bound().is_none(),
+            "NaN refused"
+        );
         let c = qp(&[-6, 1, 1]).cauchy_bound().unwrap();
         assert_eq!(c, q(7), "Cauchy bound of x² + x − 6 is 1 + 6");
     }
 
     #[test]
     fn primitive_integer_clears_denominators() {
-        let p = Poly::new(vec![Rat::new(1.into(), 2.into()), Rat::new((-3).into(), 4.into())]);
-        assert_eq!(p.primitive_integer(), qp(&[-2, 3]), "(1/2 − 3/4 x) ~ 3x − 2");
+        let p = Poly::new(vec![
+            Rat::new(1.into(), 2.into()),
+            Rat::new((-3).into(), 4.into()),
+        ]);
+        assert_eq!(
+            p.primitive_integer(),
+            qp(&[-2, 3]),
+            "(1/2 − 3/4 x) ~ 3x − 2"
+        );
     }
 }
