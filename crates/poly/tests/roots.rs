@@ -440,3 +440,6 @@ fn exact_refinement_reaches_width_two_to_the_minus_k() {
         );
     }
 }
+
+/// Real queries recorded from the Bézier-patch tracer (separate file for its fixture parser).
+mod teapot_eliminants;
