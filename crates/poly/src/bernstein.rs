@@ -24,7 +24,7 @@
 
 use smallvec::SmallVec;
 
-use crate::eval_bound::{ETA, certified_value, gamma_ratio_upper};
+use crate::eval_bound::{ETA, certified_sign, certified_value, gamma_ratio_upper};
 use crate::stats::RootStats;
 
 /// Storage for one node's coefficients: a fixed array (no heap allocation; only the first
@@ -134,16 +134,23 @@ impl Bracket {
     }
 }
 
-/// The outcome of a certified search.
+/// Brackets found by one isolator run (sorted, disjoint).
+pub(crate) type Brackets = SmallVec<[Bracket; 4]>;
+
+/// Where an isolator run got stuck: a sign it needed could not be certified in `f64` in the
+/// node `[u0, u1]`. Everything in `(t_min, t_a]` has been answered (the brackets found so far,
+/// and no other root); the stuck node lies within `(t_a, t_b]`. Both ends are `f64` numbers
+/// with certified non-zero signs `s_a`, `s_b` (`t_b = t_max` when the node reaches it), so the
+/// caller can go on with fresh, tighter work on `(t_a, t_b]` and then `(t_b, t_max]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum Search {
-    /// No root in the half-open interval `(t_min, t_max]`.
-    NoRoot,
-    /// The smallest root of `(t_min, t_max]` is the only root in this bracket, and no root
-    /// lies in `(t_min, lo]`.
-    Found(Bracket),
-    /// A sign could not be certified in `f64`; the answer needs exact arithmetic.
-    Uncertain,
+pub(crate) struct Stuck {
+    pub(crate) t_a: f64,
+    pub(crate) s_a: i8,
+    pub(crate) t_b: f64,
+    pub(crate) s_b: i8,
+    /// The run's magnitude bound `M` (see the module docs): a fresh run on a narrower
+    /// interval helps only when its own `M` is much smaller.
+    pub(crate) mag: f64,
 }
 
 /// Certified Bernstein-basis isolation of the roots of one `f64` polynomial in `(t_min, t_max]`.
@@ -276,6 +283,11 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         let v = node.v.at();
         let n = self.n();
         let sign = |i: usize| -> i8 { i8::from(v[i] > err) - i8::from(-v[i] > err) };
+        if v[..=n].iter().all(|x| x.abs() <= err) {
+            // Every coefficient is within its error bound: halving only averages them, so
+            // no descendant can be decided in this run.
+            return Class::Hopeless;
+        }
         let first = if node.u0 == 0.0 { self.s_min } else { sign(0) };
         let last = if node.u1 == 1.0 && self.w_exact {
             self.s_max
@@ -408,8 +420,8 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         }))
     }
 
-    /// Replaces an undecided node by its two halves on the stack (left half on top). False
-    /// when the budget is spent or the node is too narrow to halve exactly.
+    /// Replaces an undecided node by its two halves on the stack (left half on top). Gives
+    /// the node back when the budget is spent or the node is too narrow to halve exactly.
     ///
     /// (Rigorous Bézier clipping — cutting away the parts where the convex hull of the
     /// control polygon proves there is no root — was tried here and removed: on ray–torus
@@ -421,19 +433,19 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         stack: &mut SmallVec<[Node<S>; 8]>,
         splits: &mut u32,
         stats: &mut RootStats,
-    ) -> bool {
+    ) -> Result<(), Node<S>> {
         if node.depth >= MAX_DEPTH || *splits >= MAX_SPLITS {
-            return false;
+            return Err(node);
         }
         *splits += 1;
         stats.subdivisions += 1;
         if 0.5 * (node.u0 + node.u1) <= node.u0 {
-            return false;
+            return Err(node);
         }
         let (l, r) = self.split(node);
         stack.push(r);
         stack.push(l);
-        true
+        Ok(())
     }
 
     fn take_top(&mut self) -> Node<S> {
@@ -447,134 +459,137 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         std::mem::replace(&mut self.top, empty)
     }
 
-    /// The smallest root in `(t_min, t_max]`: depth-first, left half first, stopping at the
-    /// first node that holds exactly one root.
-    pub(crate) fn first_root(mut self, stats: &mut RootStats) -> Search {
+    /// The roots in `(t_min, t_max]`, depth-first and left half first, appended to `out` as
+    /// sorted disjoint brackets; with `first_only`, stops at the first. `Err` when a sign could
+    /// not be certified: the brackets already in `out` stand, and [`Stuck`] says where to go on.
+    pub(crate) fn run(
+        mut self,
+        first_only: bool,
+        out: &mut Brackets,
+        stats: &mut RootStats,
+    ) -> Result<(), Stuck> {
         let mut stack: SmallVec<[Node<S>; 8]> = SmallVec::new();
         stack.push(self.take_top());
         let mut splits = 0u32;
         while let Some(node) = stack.pop() {
             if node.u0 > self.u_beyond {
-                // Entirely beyond t_max (w rounded up), and everything left of it is empty.
-                return Search::NoRoot;
-            }
-            match self.classify(&node) {
-                Class::Empty => {}
-                Class::One => {
-                    return match self.bracket(&node) {
-                        Ok(Some(b)) => Search::Found(b),
-                        Ok(None) => Search::NoRoot,
-                        Err(()) => Search::Uncertain,
-                    };
-                }
-                Class::Split => {
-                    if !self.expand(node, &mut stack, &mut splits, stats) {
-                        return Search::Uncertain;
-                    }
-                }
-            }
-        }
-        Search::NoRoot
-    }
-
-    /// Every root in `(t_min, t_max]`, as sorted disjoint brackets; `None` when a sign could
-    /// not be certified.
-    pub(crate) fn all_roots(mut self, stats: &mut RootStats) -> Option<Vec<Bracket>> {
-        let mut out = Vec::new();
-        let mut stack: SmallVec<[Node<S>; 8]> = SmallVec::new();
-        stack.push(self.take_top());
-        let mut splits = 0u32;
-        while let Some(node) = stack.pop() {
-            if node.u0 > self.u_beyond {
-                break;
+                // Entirely beyond t_max (w rounded up), and everything left of it is done.
+                return Ok(());
             }
             match self.classify(&node) {
                 Class::Empty => {}
                 Class::One => match self.bracket(&node) {
-                    Ok(Some(b)) => out.push(b),
-                    Ok(None) => break,
-                    Err(()) => return None,
+                    Ok(Some(b)) => {
+                        out.push(b);
+                        if first_only {
+                            return Ok(());
+                        }
+                    }
+                    Ok(None) => return Ok(()),
+                    Err(()) => return Err(self.stuck(&node, out)),
                 },
                 Class::Split => {
-                    if !self.expand(node, &mut stack, &mut splits, stats) {
-                        return None;
+                    if let Err(node) = self.expand(node, &mut stack, &mut splits, stats) {
+                        return Err(self.stuck(&node, out));
                     }
+                }
+                Class::Hopeless => return Err(self.stuck(&node, out)),
+            }
+        }
+        Ok(())
+    }
+
+    /// The certified ends `(t_a, t_b]` around a stuck node (see [`Stuck`]).
+    ///
+    /// `t_a`: the interval left of the node holds no root other than those bracketed in
+    /// `out`, whose last bracket ends at a certified sign; so the floor `max(t_min, last hi)`
+    /// is a valid `t_a`, and `fma(w, u0, a)` moved one step down (strictly below the node's
+    /// exact start) is a closer one when its sign is certified. `t_b`: the first point at or
+    /// beyond the node's exact end `fma(w, u1, a)` one step up, then further out by fractions
+    /// of the node's width, whose sign is certified; `t_max` when none is.
+    fn stuck(&self, node: &Node<S>, out: &Brackets) -> Stuck {
+        let (floor, s_floor) = out.last().map_or((self.a, self.s_min), |b| (b.hi, -b.s_lo));
+        let (mut t_a, mut s_a) = (floor, s_floor);
+        if node.u0 > 0.0 {
+            let x = w_u_a(self.w, node.u0, self.a).next_down();
+            if x > floor {
+                let s = certified_sign(self.p, x);
+                if s != 0 {
+                    (t_a, s_a) = (x, s);
                 }
             }
         }
-        Some(out)
+        let (mut t_b, mut s_b) = (self.t_max, self.s_max);
+        if node.u1 < 1.0 {
+            let end = w_u_a(self.w, node.u1, self.a).next_up();
+            let width = self.w * (node.u1 - node.u0);
+            for step in [0.0, 1.0 / 64.0, 1.0 / 16.0, 0.25, 1.0] {
+                let x = end + width * step;
+                if x.is_nan() || x >= self.t_max {
+                    break;
+                }
+                let s = certified_sign(self.p, x);
+                if s != 0 && x > t_a {
+                    (t_b, s_b) = (x, s);
+                    break;
+                }
+            }
+        }
+        Stuck {
+            t_a,
+            s_a,
+            t_b,
+            s_b,
+            mag: self.mag,
+        }
     }
 }
 
-/// [`BernsteinIsolator::first_root`] with coefficient storage sized to the degree: fixed
-/// arrays of exactly `n + 1` entries up to degree 10 (loops with constant bounds), a fixed
-/// 25-entry array up to degree 24 (no heap allocation), `Vec` above.
-pub(crate) fn first_root(
+/// [`BernsteinIsolator::run`] on `(t_min, t_max]` with coefficient storage sized to the
+/// degree: fixed arrays of exactly `n + 1` entries up to degree 10 (loops with constant
+/// bounds), a fixed 25-entry array up to degree 24 (no heap allocation), `Vec` above. The
+/// caller has certified the non-zero signs `s_min` of `p(t_min)` and `s_max` of `p(t_max)`.
+/// When the map to `[0, 1]` overflows, the whole interval is reported stuck.
+pub(crate) fn run(
     p: &[f64],
-    t_min: f64,
-    t_max: f64,
-    s_min: i8,
-    s_max: i8,
+    (t_min, t_max): (f64, f64),
+    (s_min, s_max): (i8, i8),
+    first_only: bool,
+    out: &mut Brackets,
     stats: &mut RootStats,
-) -> Search {
-    fn run<S: Coeffs>(
+) -> Result<(), Stuck> {
+    fn go<S: Coeffs>(
         p: &[f64],
         (t_min, t_max, s_min, s_max): (f64, f64, i8, i8),
+        first_only: bool,
+        out: &mut Brackets,
         stats: &mut RootStats,
-    ) -> Search {
+    ) -> Result<(), Stuck> {
         match BernsteinIsolator::<S>::new(p, t_min, t_max, s_min, s_max) {
-            Some(iso) => iso.first_root(stats),
-            None => Search::Uncertain,
+            Some(iso) => iso.run(first_only, out, stats),
+            None => Err(Stuck {
+                t_a: t_min,
+                s_a: s_min,
+                t_b: t_max,
+                s_b: s_max,
+                mag: f64::INFINITY,
+            }),
         }
     }
     let args = (t_min, t_max, s_min, s_max);
     match p.len() {
-        2 => run::<[f64; 2]>(p, args, stats),
-        3 => run::<[f64; 3]>(p, args, stats),
-        4 => run::<[f64; 4]>(p, args, stats),
-        5 => run::<[f64; 5]>(p, args, stats),
-        6 => run::<[f64; 6]>(p, args, stats),
-        7 => run::<[f64; 7]>(p, args, stats),
-        8 => run::<[f64; 8]>(p, args, stats),
-        9 => run::<[f64; 9]>(p, args, stats),
-        10 => run::<[f64; 10]>(p, args, stats),
-        11 => run::<[f64; 11]>(p, args, stats),
-        12..=25 => run::<Cap<25>>(p, args, stats),
-        _ => run::<Vec<f64>>(p, args, stats),
-    }
-}
-
-/// [`BernsteinIsolator::all_roots`] with storage as in [`first_root`]; `None` when a sign
-/// could not be certified.
-pub(crate) fn all_roots(
-    p: &[f64],
-    t_min: f64,
-    t_max: f64,
-    s_min: i8,
-    s_max: i8,
-    stats: &mut RootStats,
-) -> Option<Vec<Bracket>> {
-    fn run<S: Coeffs>(
-        p: &[f64],
-        (t_min, t_max, s_min, s_max): (f64, f64, i8, i8),
-        stats: &mut RootStats,
-    ) -> Option<Vec<Bracket>> {
-        BernsteinIsolator::<S>::new(p, t_min, t_max, s_min, s_max)?.all_roots(stats)
-    }
-    let args = (t_min, t_max, s_min, s_max);
-    match p.len() {
-        2 => run::<[f64; 2]>(p, args, stats),
-        3 => run::<[f64; 3]>(p, args, stats),
-        4 => run::<[f64; 4]>(p, args, stats),
-        5 => run::<[f64; 5]>(p, args, stats),
-        6 => run::<[f64; 6]>(p, args, stats),
-        7 => run::<[f64; 7]>(p, args, stats),
-        8 => run::<[f64; 8]>(p, args, stats),
-        9 => run::<[f64; 9]>(p, args, stats),
-        10 => run::<[f64; 10]>(p, args, stats),
-        11 => run::<[f64; 11]>(p, args, stats),
-        12..=25 => run::<Cap<25>>(p, args, stats),
-        _ => run::<Vec<f64>>(p, args, stats),
+        2 => go::<[f64; 2]>(p, args, first_only, out, stats),
+        3 => go::<[f64; 3]>(p, args, first_only, out, stats),
+        4 => go::<[f64; 4]>(p, args, first_only, out, stats),
+        5 => go::<[f64; 5]>(p, args, first_only, out, stats),
+        6 => go::<[f64; 6]>(p, args, first_only, out, stats),
+        7 => go::<[f64; 7]>(p, args, first_only, out, stats),
+        8 => go::<[f64; 8]>(p, args, first_only, out, stats),
+        9 => go::<[f64; 9]>(p, args, first_only, out, stats),
+        10 => go::<[f64; 10]>(p, args, first_only, out, stats),
+        11 => go::<[f64; 11]>(p, args, first_only, out, stats),
+        12..=25 => go::<Cap<25>>(p, args, first_only, out, stats),
+        _ => go::<Vec<f64>>(p, args, first_only, out, stats),
     }
 }
 
@@ -583,6 +598,8 @@ enum Class {
     Empty,
     One,
     Split,
+    /// Every coefficient is within its error bound: no descendant can be decided.
+    Hopeless,
 }
 
 /// `t = a + w·u` rounded once (fused multiply-add), so within half an ulp of the exact value.

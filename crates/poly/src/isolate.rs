@@ -8,7 +8,8 @@
 //! query switch to exact rational arithmetic on the same stored polynomial (counted in
 //! [`RootStats::exact_fallbacks`]). See `paper-notes/isolation.md`.
 
-use crate::bernstein::{Bracket, Search, all_roots, first_root};
+use crate::bernstein::Bracket;
+use crate::certified::{CertifiedSearch, Found, exact_isolate};
 use crate::closed_form::{linear_smallest, quadratic_smallest};
 use crate::eval_bound::certified_sign;
 use crate::refine::{Refined, bisect_rational_to_f64, refine_bracket, refine_exact_f64};
@@ -279,17 +280,24 @@ impl Poly<f64> {
         stats: &mut RootStats,
     ) -> Result<Vec<RootInterval<f64>>, RootError> {
         if let Some((q, lo, hi)) = zero_root_split(self, a, b, opts)? {
+            let fallbacks = stats.exact_fallbacks;
             let mut out = q.isolate_roots_inner(lo, hi.min(0.0), opts, stats)?;
             if lo < 0.0 && 0.0 <= hi {
                 out.push(RootInterval { lo: 0.0, hi: 0.0 });
             }
             out.extend(q.isolate_roots_inner(lo.max(0.0), hi, opts, stats)?);
+            // One query: at most one exact fallback, though each side may have needed one.
+            stats.exact_fallbacks = stats.exact_fallbacks.min(fallbacks + 1);
             return Ok(out);
         }
         Ok(match self.isolate_inner(a, b, opts, stats)? {
-            Isolation::Certified(brackets) => brackets
+            Isolation::Certified(search) => search
+                .found
                 .into_iter()
-                .map(|b| RootInterval { lo: b.lo, hi: b.hi })
+                .map(|f| match f {
+                    Found::Bracket(b) => RootInterval { lo: b.lo, hi: b.hi },
+                    Found::Exact(iv) => iv,
+                })
                 .collect(),
             Isolation::Exact(_, ivs) | Isolation::Heuristic(ivs) => ivs,
         })
@@ -351,17 +359,21 @@ impl Poly<f64> {
         stats: &mut RootStats,
     ) -> Result<Vec<f64>, RootError> {
         if let Some((q, lo, hi)) = zero_root_split(self, a, b, opts)? {
+            let fallbacks = stats.exact_fallbacks;
             let mut out = q.real_roots_inner(lo, hi.min(0.0), opts, stats)?;
             if lo < 0.0 && 0.0 <= hi {
                 out.push(0.0);
             }
             out.extend(q.real_roots_inner(lo.max(0.0), hi, opts, stats)?);
+            // One query: at most one exact fallback, though each side may have needed one.
+            stats.exact_fallbacks = stats.exact_fallbacks.min(fallbacks + 1);
             return Ok(out);
         }
         let roots: Vec<f64> = match self.isolate_inner(a, b, opts, stats)? {
-            Isolation::Certified(brackets) => brackets
-                .into_iter()
-                .map(|b| refine_certified(self, b, opts.x_tol, opts.refine, stats))
+            Isolation::Certified(search) => search
+                .found
+                .iter()
+                .map(|f| refine_found(self, &search, f, opts, stats))
                 .collect(),
             Isolation::Exact(seq, ivs) => ivs
                 .iter()
@@ -381,28 +393,19 @@ impl Poly<f64> {
         b: f64,
         opts: &RootOptions,
         stats: &mut RootStats,
-    ) -> Result<Isolation, RootError> {
+    ) -> Result<Isolation<'_>, RootError> {
         let (lo, hi) = match prepare(self, a, b, opts.x_tol)? {
-            Range::Empty => return Ok(Isolation::Certified(Vec::new())),
+            // Nothing to search: no roots (any variant with an empty list says so).
+            Range::Empty => return Ok(Isolation::Heuristic(Vec::new())),
             Range::Search { lo, hi } => (lo, hi),
         };
         Ok(match opts.isolation {
             IsolationMethod::Bernstein => {
-                let c = self.coeffs();
-                let certified = if lo.is_finite() && hi.is_finite() {
-                    let (s_min, s_max) = (certified_sign(c, lo), certified_sign(c, hi));
-                    (s_min != 0 && s_max != 0)
-                        .then(|| all_roots(c, lo, hi, s_min, s_max, stats))
-                        .flatten()
+                if lo.is_finite() && hi.is_finite() {
+                    Isolation::Certified(CertifiedSearch::run(self, lo, hi, false, stats))
                 } else {
-                    None
-                };
-                match certified {
-                    Some(brackets) => Isolation::Certified(brackets),
-                    None => {
-                        stats.exact_fallbacks += 1;
-                        exact_isolation(self, lo, hi, false, stats)
-                    }
+                    stats.exact_fallbacks += 1;
+                    exact_isolation(self, lo, hi, false, stats)
                 }
             }
             IsolationMethod::Exact => exact_isolation(self, lo, hi, false, stats),
@@ -431,9 +434,9 @@ impl Poly<f64> {
 }
 
 /// The isolation result, before conversion or refinement.
-enum Isolation {
-    /// Certified `f64` brackets from the Bernstein path.
-    Certified(Vec<Bracket>),
+enum Isolation<'p> {
+    /// The default certified search: `f64` brackets, and exact intervals where it needed them.
+    Certified(CertifiedSearch<'p>),
     /// Exact isolation: the exact Sturm sequence and intervals with `f64` ends.
     Exact(SturmSequence<Rat>, Vec<RootInterval<f64>>),
     /// Floating-point Sturm counts: intervals `(lo, hi]` by the counts.
@@ -464,19 +467,37 @@ fn certified_smallest(
             return answer;
         }
     }
-    let (s_min, s_max) = (certified_sign(c, lo), certified_sign(c, hi));
-    let search = if s_min != 0 && s_max != 0 {
-        first_root(c, lo, hi, s_min, s_max, stats)
-    } else {
-        Search::Uncertain
-    };
-    match search {
-        Search::NoRoot => None,
-        Search::Found(b) => Some(refine_certified(p, b, opts.x_tol, opts.refine, stats)),
-        Search::Uncertain => {
-            stats.exact_fallbacks += 1;
-            exact_smallest(p, lo, hi, opts.x_tol, stats)
+    let search = CertifiedSearch::run(p, lo, hi, true, stats);
+    let first = search.found.first()?;
+    Some(refine_found(p, &search, first, opts, stats))
+}
+
+/// Refines one root of a certified search: a bracket in `f64` (exact finish if needed); an
+/// exact interval also in `f64` when its end signs certify it as a bracket (it holds one
+/// distinct root, so opposite signs make it one of odd multiplicity), else with the exact
+/// sequence.
+fn refine_found(
+    p: &Poly<f64>,
+    search: &CertifiedSearch<'_>,
+    found: &Found,
+    opts: &RootOptions,
+    stats: &mut RootStats,
+) -> f64 {
+    let bracket = match found {
+        Found::Bracket(b) => Some(*b),
+        Found::Exact(iv) if !iv.is_point() => {
+            let c = p.coeffs();
+            let s_lo = certified_sign(c, iv.lo);
+            (s_lo != 0 && certified_sign(c, iv.hi) == -s_lo)
+                .then(|| Bracket::new(iv.lo, iv.hi, s_lo))
         }
+        Found::Exact(_) => None,
+    };
+    match (bracket, found, search.exact_sequence()) {
+        (Some(b), _, _) => refine_certified(p, b, opts.x_tol, opts.refine, stats),
+        (None, Found::Bracket(_), _) => unreachable!("brackets are refined in f64"),
+        (None, Found::Exact(iv), Some(seq)) => refine_exact_interval(seq, iv, opts.x_tol),
+        (None, Found::Exact(iv), None) => unreachable!("exact interval {iv:?} without a sequence"),
     }
 }
 
@@ -519,7 +540,7 @@ fn exact_isolation(
     hi: f64,
     first_only: bool,
     stats: &mut RootStats,
-) -> Isolation {
+) -> Isolation<'static> {
     let q = p.to_rat().expect("finite coefficients were checked");
     let seq = q.sturm().expect("non-zero polynomial was checked");
     // Infinite ends: the exact Cauchy bound holds every root strictly inside (−B, B).
@@ -537,37 +558,7 @@ fn exact_isolation(
     } else {
         bound.min(f64::MAX)
     };
-    let count_at = |x: f64| seq.sign_changes_at(&rat_from_f64(x).expect("finite"));
-    let mut out = Vec::new();
-    let mut stack = vec![(lo, hi, count_at(lo), count_at(hi))];
-    while let Some((a, b, va, vb)) = stack.pop() {
-        let n = va.saturating_sub(vb);
-        if n == 0 {
-            continue;
-        }
-        let m = 0.5 * a + 0.5 * b;
-        let splittable = m > a && m < b;
-        if n == 1 || !splittable {
-            // One root in (a, b]; or several roots closer than one f64 spacing, which f64
-            // numbers cannot separate (documented on isolate_roots).
-            let at_b = seq.sign_of_square_free_at(&rat_from_f64(b).expect("finite")) == 0;
-            for _ in 0..n {
-                out.push(if at_b && n == 1 {
-                    RootInterval { lo: b, hi: b }
-                } else {
-                    RootInterval { lo: a, hi: b }
-                });
-            }
-            if first_only {
-                break;
-            }
-            continue;
-        }
-        stats.subdivisions += 1;
-        let vm = count_at(m);
-        stack.push((m, b, vm, vb));
-        stack.push((a, m, va, vm));
-    }
+    let out = exact_isolate(&seq, lo, hi, first_only, stats);
     Isolation::Exact(seq, out)
 }
 

@@ -16,6 +16,7 @@
 
 mod bernstein;
 mod bivariate;
+mod certified;
 mod closed_form;
 mod eval_bound;
 mod int_poly;

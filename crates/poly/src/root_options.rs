@@ -10,9 +10,11 @@
 pub enum IsolationMethod {
     /// Descartes' rule of signs in the Bernstein basis with de Casteljau subdivision
     /// (Vincent–Collins–Akritas style), in `f64` with a rigorous rounding-error bound on every
-    /// Bernstein coefficient. When a sign cannot be certified (multiple or clustered roots, a
-    /// root on a subdivision point, a polynomial that nearly vanishes) the query is answered by
-    /// [`IsolationMethod::Exact`] on the same stored polynomial, and the fallback is counted in
+    /// Bernstein coefficient. An exact factor `x^k` (zero low coefficients) is divided out
+    /// first. When a sign cannot be certified (a root on a subdivision point, tiny roots near
+    /// 0, clustered roots) a fresh run with its own error bound takes the undecided piece; what
+    /// `f64` still cannot decide (near-multiple roots of the stored polynomial) is isolated by
+    /// exact Sturm counts on that piece only, counted in
     /// [`RootStats::exact_fallbacks`](crate::RootStats::exact_fallbacks).
     ///
     /// Certified: the answer is that of the stored polynomial, whatever the rounding.

@@ -36,8 +36,9 @@ pub struct RootStats {
     pub with_root: u64,
     /// Queries answered by a certified closed form (degree 1 or 2).
     pub closed_form: u64,
-    /// Certified isolation could not decide a sign in `f64` and redid the query with exact
-    /// rational arithmetic. This is the statistic the renderer reports.
+    /// Queries whose certified isolation could not decide some sign in `f64` and built the
+    /// exact Sturm sequence of the stored polynomial (at most once per query; it is then used
+    /// only on the pieces `f64` could not decide). This is the statistic the renderer reports.
     pub exact_fallbacks: u64,
     /// Refinement reached the `f64` noise floor above the tolerance and finished the bracket
     /// with exact rational signs.

@@ -1,0 +1,379 @@
+//! [`CertifiedSearch`]: the default `f64` isolation ([`IsolationMethod::Bernstein`]) as a
+//! sequence of Bernstein runs, each with its own fresh error bound, and exact arithmetic only
+//! on the pieces that `f64` could not decide.
+//!
+//! A run of [`bernstein::run`] on `(lo, hi]` either answers the whole interval or stops at a
+//! node where a sign could not be certified, having answered `(lo, t_a]` and certified the
+//! signs at `t_a` and at a point `t_b` past the node ([`Stuck`]). The search then starts a
+//! *fresh* run on `(t_a, t_b]` and another on `(t_b, hi]`. A fresh run helps in two ways:
+//! its error bound `γ(k)·M` starts again from the few roundings of one Taylor shift, with
+//! `M = Σ|cᵢ|(|t_a| + |t_b − t_a|)ⁱ`, which is far smaller than the parent's when the piece
+//! lies near 0 and the roots there are tiny (eliminants whose roots cluster near `u = 0`); and
+//! its subdivision points are no longer the parent's dyadic points, so a root sitting exactly
+//! on one of those (odd Chebyshev polynomials at 0) is now inside a node. When a run whose `M`
+//! is not [`MIN_MAG_GAIN`] of its parent's is stuck, or after [`MAX_RUNS`] runs, the stuck
+//! piece (after the budget: everything left) is isolated by exact Sturm counts on the stored
+//! polynomial (the sequence is built once per query, counted in
+//! [`RootStats::exact_fallbacks`]). See `paper-notes/isolation.md`, "Restarts and local
+//! exact isolation".
+//!
+//! [`IsolationMethod::Bernstein`]: crate::IsolationMethod::Bernstein
+
+use smallvec::SmallVec;
+
+use crate::bernstein::{self, Bracket, Brackets, Stuck};
+use crate::eval_bound::certified_sign;
+use crate::root_interval::RootInterval;
+use crate::scalar::{Rat, rat_from_f64};
+use crate::stats::RootStats;
+use crate::sturm::SturmSequence;
+use crate::univariate::Poly;
+
+/// Most Bernstein runs in one query (the first included) before the remaining pieces go
+/// straight to exact isolation. Each run costs one Taylor shift, `O(n²)` flops.
+const MAX_RUNS: u32 = 16;
+
+/// A run on a piece where its parent was stuck may itself go on with further runs only if
+/// its magnitude bound `M` is at most this fraction of the parent's; otherwise its error
+/// bounds are no tighter, more runs would be stuck the same way, and its stuck piece is
+/// isolated exactly.
+const MIN_MAG_GAIN: f64 = 0.25;
+
+/// Non-dyadic fractions of an interval at which it is split when a run is stuck on all of it
+/// (`√2 − 1`, `2 − √2`, golden-section points): a root exactly at a dyadic point of the
+/// interval, as odd Chebyshev polynomials have at 0, is not hit again.
+const SPLIT_FRACTIONS: [f64; 4] = [
+    0.414_213_562_373_095_1,
+    0.585_786_437_626_904_9,
+    0.309_016_994_374_947_4,
+    0.690_983_005_625_052_6,
+];
+
+/// One isolated root of the stored polynomial.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Found {
+    /// A certified `f64` bracket (refined in `f64`).
+    Bracket(Bracket),
+    /// An interval from exact isolation (refined with the exact sequence).
+    Exact(RootInterval<f64>),
+}
+
+/// The certified search of one query (see the module docs).
+pub(crate) struct CertifiedSearch<'p> {
+    p: &'p Poly<f64>,
+    first_only: bool,
+    runs_left: u32,
+    /// The exact Sturm sequence of the stored polynomial, built on first need.
+    exact: Option<SturmSequence<Rat>>,
+    /// The roots found, sorted.
+    pub(crate) found: SmallVec<[Found; 2]>,
+}
+
+impl<'p> CertifiedSearch<'p> {
+    /// Isolates the roots of `p` in `(lo, hi]` (both finite, `lo < hi`), or only the first
+    /// one with `first_only`.
+    pub(crate) fn run(
+        p: &'p Poly<f64>,
+        lo: f64,
+        hi: f64,
+        first_only: bool,
+        stats: &mut RootStats,
+    ) -> Self {
+        let mut search = CertifiedSearch {
+            p,
+            first_only,
+            runs_left: MAX_RUNS,
+            exact: None,
+            found: SmallVec::new(),
+        };
+        search.start(lo, hi, stats);
+        search
+    }
+
+    /// The exact sequence, when some piece needed it.
+    pub(crate) fn exact_sequence(&self) -> Option<&SturmSequence<Rat>> {
+        self.exact.as_ref()
+    }
+
+    /// Certifies the end signs; an end whose sign cannot be certified (a root at or within
+    /// rounding of it) gets a short exact piece next to it.
+    fn start(&mut self, lo: f64, hi: f64, stats: &mut RootStats) {
+        let c = self.p.coeffs();
+        let (s_lo, s_hi) = (certified_sign(c, lo), certified_sign(c, hi));
+        let (mut a, mut s_a) = (lo, s_lo);
+        if s_lo == 0 {
+            let Some((x, s)) = near_end(c, lo, hi, lo, 1.0) else {
+                self.exact(lo, hi, stats);
+                return;
+            };
+            if self.exact(lo, x, stats) {
+                return;
+            }
+            (a, s_a) = (x, s);
+        }
+        let (mut b, mut s_b) = (hi, s_hi);
+        if s_hi == 0 {
+            let Some((y, s)) = near_end(c, a, hi, hi, -1.0) else {
+                self.exact(a, hi, stats);
+                return;
+            };
+            (b, s_b) = (y, s);
+        }
+        if self.range(a, b, (s_a, s_b), f64::INFINITY, stats) {
+            return;
+        }
+        if b < hi {
+            self.exact(b, hi, stats);
+        }
+    }
+
+    /// Answers `(lo, hi]` (certified non-zero end signs `s`); true when the search is over
+    /// (the first root is found in `first_only` mode).
+    fn range(
+        &mut self,
+        lo: f64,
+        hi: f64,
+        s: (i8, i8),
+        parent_mag: f64,
+        stats: &mut RootStats,
+    ) -> bool {
+        if self.runs_left == 0 {
+            return self.exact(lo, hi, stats);
+        }
+        self.runs_left -= 1;
+        let mut out = Brackets::new();
+        let result = bernstein::run(
+            self.p.coeffs(),
+            (lo, hi),
+            s,
+            self.first_only,
+            &mut out,
+            stats,
+        );
+        let any = !out.is_empty();
+        self.found.extend(out.into_iter().map(Found::Bracket));
+        let stuck = match result {
+            Ok(()) => return self.first_only && any,
+            Err(stuck) => stuck,
+        };
+        if self.first_only && any {
+            return true;
+        }
+        let Stuck {
+            t_a,
+            s_a,
+            t_b,
+            s_b,
+            mag,
+        } = stuck;
+        // A run no tighter than its parent cannot do better than the parent did, so its
+        // stuck piece goes exact rather than to yet another run.
+        let no_gain = mag > MIN_MAG_GAIN * parent_mag;
+        if t_a == lo && t_b == hi {
+            // Stuck on the whole interval: split it at a non-dyadic point and try fresh runs
+            // on the parts.
+            if no_gain {
+                return self.exact(lo, hi, stats);
+            }
+            let Some((m, s_m)) = split_point(self.p.coeffs(), lo, hi) else {
+                return self.exact(lo, hi, stats);
+            };
+            return self.range(lo, m, (s.0, s_m), mag, stats)
+                || self.range(m, hi, (s_m, s.1), mag, stats);
+        }
+        // (lo, t_a] is answered; (t_a, t_b] holds the stuck node; (t_b, hi] is untouched and
+        // gets a run of its own.
+        let done = if no_gain {
+            self.exact(t_a, t_b, stats)
+        } else {
+            self.range(t_a, t_b, (s_a, s_b), mag, stats)
+        };
+        done || (t_b < hi && self.range(t_b, hi, (s_b, s.1), f64::INFINITY, stats))
+    }
+
+    /// Exact Sturm isolation of `(lo, hi]` (finite `f64` ends); true when the search is over.
+    fn exact(&mut self, lo: f64, hi: f64, stats: &mut RootStats) -> bool {
+        let p = self.p;
+        let seq = self.exact.get_or_insert_with(|| {
+            stats.exact_fallbacks += 1;
+            p.to_rat()
+                .expect("finite coefficients were checked")
+                .sturm()
+                .expect("non-zero polynomial was checked")
+        });
+        let ivs = exact_isolate(seq, lo, hi, self.first_only, stats);
+        let any = !ivs.is_empty();
+        self.found.extend(ivs.into_iter().map(Found::Exact));
+        self.first_only && any
+    }
+}
+
+/// A point strictly inside `(lo, hi)` with a certified sign, near `end` (`lo` with `dir = 1`,
+/// `hi` with `dir = −1`): `end + dir·(hi − lo)·2^-k` for `k = 40, 30, 20, 10, 4`, the first
+/// whose sign is certified.
+fn near_end(c: &[f64], lo: f64, hi: f64, end: f64, dir: f64) -> Option<(f64, i8)> {
+    let width = hi - lo;
+    [40, 30, 20, 10, 4].into_iter().find_map(|k| {
+        let x = end + dir * width * 2f64.powi(-k);
+        let s = if x > lo && x < hi {
+            certified_sign(c, x)
+        } else {
+            0
+        };
+        (s != 0).then_some((x, s))
+    })
+}
+
+/// A point strictly inside `(lo, hi)` at one of [`SPLIT_FRACTIONS`] with a certified sign.
+fn split_point(c: &[f64], lo: f64, hi: f64) -> Option<(f64, i8)> {
+    SPLIT_FRACTIONS.into_iter().find_map(|f| {
+        let m = lo + (hi - lo) * f;
+        let s = if m > lo && m < hi {
+            certified_sign(c, m)
+        } else {
+            0
+        };
+        (s != 0).then_some((m, s))
+    })
+}
+
+/// Exact Sturm isolation of the stored polynomial on `(lo, hi]` (finite ends), bisecting at
+/// `f64` points so that every interval end is an `f64` (seed §3.5.2 with exact counts).
+/// Roots closer than one `f64` spacing share an interval, listed once per root (documented
+/// on [`Poly::isolate_roots`]).
+pub(crate) fn exact_isolate(
+    seq: &SturmSequence<Rat>,
+    lo: f64,
+    hi: f64,
+    first_only: bool,
+    stats: &mut RootStats,
+) -> Vec<RootInterval<f64>> {
+    let count_at = |x: f64| seq.sign_changes_at(&rat_from_f64(x).expect("finite"));
+    let mut out = Vec::new();
+    let mut stack = vec![(lo, hi, count_at(lo), count_at(hi))];
+    while let Some((a, b, va, vb)) = stack.pop() {
+        let n = va.saturating_sub(vb);
+        if n == 0 {
+            continue;
+        }
+        let m = 0.5 * a + 0.5 * b;
+        let splittable = m > a && m < b;
+        if n == 1 || !splittable {
+            let at_b = seq.sign_of_square_free_at(&rat_from_f64(b).expect("finite")) == 0;
+            for _ in 0..n {
+                out.push(if at_b && n == 1 {
+                    RootInterval { lo: b, hi: b }
+                } else {
+                    RootInterval { lo: a, hi: b }
+                });
+            }
+            if first_only {
+                break;
+            }
+            continue;
+        }
+        stats.subdivisions += 1;
+        let vm = count_at(m);
+        stack.push((m, b, vm, vb));
+        stack.push((a, m, va, vm));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::root_options::RootOptions;
+    use crate::scalar::rat_to_f64;
+    use crate::testutil::{chebyshev, planted_f64};
+
+    /// The distinct roots of the stored polynomial in `(lo, hi]` by exact Sturm isolation,
+    /// refined to 2^-80.
+    fn exact_roots(p: &Poly<f64>, lo: f64, hi: f64) -> Vec<f64> {
+        let q = p.to_rat().unwrap();
+        let seq = q.sturm().unwrap();
+        let (a, b) = (rat_from_f64(lo).unwrap(), rat_from_f64(hi).unwrap());
+        q.isolate_roots(&a, &b)
+            .unwrap()
+            .iter()
+            .map(|iv| rat_to_f64(&seq.refine_interval(iv, 80).lo))
+            .collect()
+    }
+
+    fn assert_matches_exact(p: &Poly<f64>, lo: f64, hi: f64, stats: &mut RootStats) {
+        let x_tol = 1e-12;
+        let opts = RootOptions::new(x_tol);
+        let got = p.real_roots_with(lo, hi, &opts, stats).unwrap();
+        let want = exact_roots(p, lo, hi);
+        assert_eq!(got.len(), want.len(), "{p:?}: {got:?} vs {want:?}");
+        for (g, w) in got.iter().zip(&want) {
+            assert!((g - w).abs() <= x_tol + 1e-20, "{p:?}: {g} vs {w}");
+        }
+        let first = p.smallest_root_with(lo, hi, &opts, stats);
+        assert_eq!(
+            first.is_some(),
+            !want.is_empty(),
+            "{p:?}: smallest {first:?}"
+        );
+        if let (Some(g), Some(w)) = (first, want.first()) {
+            assert!((g - w).abs() <= x_tol + 1e-20, "{p:?}: smallest {g} vs {w}");
+        }
+    }
+
+    #[test]
+    fn odd_chebyshev_root_on_the_split_point_needs_no_exact_arithmetic() {
+        // T_n for odd n has the root 0: the first dyadic split point of (−1, 1]. The old path
+        // ended every such query exactly; a fresh run with non-dyadic ends resolves it.
+        let mut stats = RootStats::default();
+        for n in [5, 9, 15, 21] {
+            assert_matches_exact(&chebyshev(n).to_f64(), -1.0, 1.0, &mut stats);
+        }
+        for n in [6, 10, 16] {
+            assert_matches_exact(&chebyshev(n).to_f64(), -0.75, 1.0, &mut stats);
+        }
+        assert_eq!(stats.exact_fallbacks, 0, "no exact fallback");
+    }
+
+    #[test]
+    fn tiny_roots_near_zero_get_fresh_error_bounds() {
+        // A recorded Gröbner-path eliminant: a complex pair at 3e-8 ± 3e-9i. The top run's
+        // error bound (relative to Σ|cᵢ| ≈ 1) swamps the values near 0; a run on a short
+        // piece near 0 has M ≈ 1e-15 and decides.
+        let p = Poly::new(vec![9.065534198266913e-16, -5.99503305044977e-8, 1.0]);
+        let mut stats = RootStats::default();
+        let opts = RootOptions {
+            closed_form: false,
+            ..RootOptions::new(1e-10)
+        };
+        let r = p.real_roots_with(-1e-10, 1.0000000001, &opts, &mut stats);
+        assert_eq!(r, Ok(vec![]), "no real root");
+        // The same with two real roots 2.4e-9 apart near 3e-8.
+        let q = planted_f64(&[2.9e-8, 3.14e-8, 0.6]);
+        assert_matches_exact(&q, -1e-10, 1.0, &mut stats);
+        assert_eq!(stats.exact_fallbacks, 0, "no exact fallback");
+    }
+
+    #[test]
+    fn exact_pieces_stay_local_and_agree_with_exact_isolation() {
+        // Three roots within 2e-9 of 0.4 with O(1) coefficients (two real ones once the
+        // coefficients are rounded): f64 cannot separate them, so exact isolation takes over
+        // near the cluster, while (0, 0.39] is answered in f64 (one exact fallback per query).
+        let p = planted_f64(&[0.4, 0.400000001, 0.400000002, 0.9]);
+        let mut stats = RootStats::default();
+        assert_matches_exact(&p, 0.0, 1.0, &mut stats);
+        assert_eq!(
+            stats.exact_fallbacks, 2,
+            "real_roots and smallest_root, once each"
+        );
+        let search = CertifiedSearch::run(&p, 0.0, 1.0, false, &mut stats);
+        assert!(
+            search.exact_sequence().is_some(),
+            "the cluster needed exact signs"
+        );
+        for f in &search.found {
+            if let Found::Exact(iv) = f {
+                assert!(iv.lo > 0.39, "exact work starts at the cluster: {iv:?}");
+            }
+        }
+    }
+}
