@@ -216,3 +216,75 @@ fn unreadable_file_names_the_path_and_the_reason() {
     assert!(source.to_string().contains("No such file"), "{source}");
     assert!(err.span().is_none(), "no place in a text");
 }
+
+/// The patch of `saddle.pts`, given three ways: Stam's `Control points in FILE`, the `=` form,
+/// and the 16 points inline (over two lines); all three build the same patch.
+#[test]
+fn bezier_patch_points_from_a_file_stam_form_or_inline() {
+    let dir = scenes_dir();
+    let pts = std::fs::read_to_string(dir.join("saddle.pts")).expect("saddle.pts");
+    let points: Vec<String> = pts
+        .lines()
+        .filter(|l| !l.trim().is_empty() && !l.trim_start().starts_with("//"))
+        .map(|l| {
+            let xyz: Vec<&str> = l.split_whitespace().collect();
+            format!("({})", xyz.join(", "))
+        })
+        .collect();
+    assert_eq!(points.len(), 16, "saddle.pts holds a bicubic net");
+    let camera = "#camera Eye = (30,-40,35) LookAt = (0,0,0) ViewField = 45\n";
+    let object = |control: &str| {
+        format!("{camera}#object Type = BEZIER_PATCH\n{control}\nIllumination = DIFFUSE\n")
+    };
+    let patch_of = |control: &str| {
+        let scene = render::scene::parse(&object(control), &dir.join("inline.scene"))
+            .unwrap_or_else(|e| panic!("{control}: {e}"));
+        match &scene.objects[0].shape {
+            ShapeKind::BezierPatches { patches, .. } => patches.clone(),
+            other => panic!("not a patch: {other:?}"),
+        }
+    };
+    let from_file = patch_of("Control points = saddle.pts");
+    assert_eq!(from_file.len(), 1);
+    assert_eq!(
+        patch_of("Control points in saddle.pts"),
+        from_file,
+        "Stam's form"
+    );
+    let inline = format!(
+        "Control points = {}\n  {}",
+        points[..8].join(" "),
+        points[8..].join(" ")
+    );
+    assert_eq!(patch_of(&inline), from_file, "inline points");
+    // The inline form round-trips through the printer.
+    let ast = parse_syntax(&object(&inline), Path::new("inline.scene")).expect("parses");
+    let again = parse_syntax(&print(&ast), Path::new("inline.scene")).expect("printed parses");
+    assert_eq!(print(&again), print(&ast));
+}
+
+#[test]
+fn inline_control_points_errors_name_the_place() {
+    let dir = scenes_dir();
+    let camera = "#camera Eye = (30,-40,35) LookAt = (0,0,0) ViewField = 45\n";
+    let error = |object: &str| {
+        render::scene::parse(&format!("{camera}{object}"), &dir.join("bad.scene"))
+            .expect_err(object)
+            .to_string()
+    };
+    let fifteen = vec!["(0, 0, 0)"; 15].join(" ");
+    let e = error(&format!(
+        "#object Type = BEZIER_PATCH\nControl points = {fifteen}"
+    ));
+    assert!(
+        e.starts_with(&format!("{}:3:18:", dir.join("bad.scene").display())),
+        "{e}"
+    );
+    assert!(e.contains("16 control points, found 15"), "{e}");
+    let e = error("#object Type = BEZIER_PATCH\nControl points = (0, 0, 0) (1, 2)");
+    assert!(e.contains(":3:28:") && e.contains("2 components"), "{e}");
+    let e = error(&format!(
+        "#object Type = BEZIER_MESH\nControl points = {fifteen} (0,0,0)"
+    ));
+    assert!(e.contains(".bpt file"), "{e}");
+}

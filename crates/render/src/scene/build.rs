@@ -22,7 +22,7 @@ use super::syntax::{
     Block, Command, Entry, Key, SceneAst, ShapeType, TextureType, Value, parse_syntax,
 };
 use crate::poly3::Poly3;
-use crate::surface::{PatchMethod, parse_bpt, parse_control_points};
+use crate::surface::{BezierPatch, PatchMethod, parse_bpt, parse_control_points};
 
 /// The largest image side `#viewport Size` and texture sizes accept, in pixels.
 ///
@@ -219,6 +219,7 @@ enum Eval {
     Illumination(Illumination),
     Bounds(Option<(DVec3, DVec3)>),
     Text(String),
+    Points(Vec<DVec3>),
 }
 
 impl Eval {
@@ -233,6 +234,7 @@ impl Eval {
             Eval::Illumination(_) => "an illumination model",
             Eval::Bounds(_) => "a bounding volume",
             Eval::Text(_) => "a name",
+            Eval::Points(_) => "a list of points",
         }
     }
 }
@@ -321,6 +323,15 @@ impl<'a> Fields<'a> {
                             Eval::Bounds(Some((lo, hi)))
                         }
                         Value::Path(p) | Value::Word(p) => Eval::Text(p.clone()),
+                        Value::Points(points) => Eval::Points(
+                            points
+                                .iter()
+                                .map(|p| -> Result<DVec3, SceneError> {
+                                    let c = |i: usize| eval_const(&p[i], &constants);
+                                    Ok(DVec3::new(c(0)?, c(1)?, c(2)?))
+                                })
+                                .collect::<Result<_, _>>()?,
+                        ),
                     };
                     fields.push(Field {
                         key: key.value,
@@ -995,9 +1006,10 @@ fn build_shape(f: &Fields<'_>, shape: ShapeType, base: &Path) -> Result<ShapeKin
     })
 }
 
-/// `Control points = FILE` (read relative to the scene) and `Method = GROEBNER | RESULTANT |
-/// GROEBNER_EXACT | RESULTANT_EXACT`
-/// of a Bézier patch or mesh; errors in the file name the file and its line.
+/// `Control points = FILE` (read relative to the scene; Stam's `Control points in FILE` too),
+/// or for a single patch the 16 points inline, and `Method = GROEBNER | RESULTANT |
+/// GROEBNER_EXACT | RESULTANT_EXACT` of a Bézier patch or mesh; errors in the file name the
+/// file and its line.
 fn read_patches(
     f: &Fields<'_>,
     mesh: bool,
@@ -1016,9 +1028,40 @@ fn read_patches(
             )
         })?,
     };
-    let (file, span) = f
-        .text(Key::ControlPoints)?
+    let field = f
+        .get(Key::ControlPoints)
         .ok_or_else(|| f.missing(Key::ControlPoints, detail))?;
+    let span = &field.value_span;
+    let file = match &field.value {
+        Eval::Text(file) => file,
+        Eval::Points(_) if mesh => {
+            return Err(invalid(
+                span,
+                Key::ControlPoints,
+                "a BEZIER_MESH reads its patches from a .bpt file; inline points are for a \
+                 BEZIER_PATCH",
+            ));
+        }
+        Eval::Points(points) if points.len() != 16 => {
+            return Err(invalid(
+                span,
+                Key::ControlPoints,
+                format!(
+                    "a bicubic patch needs 16 control points, found {}",
+                    points.len()
+                ),
+            ));
+        }
+        Eval::Points(points) => {
+            let patch = BezierPatch::new(3, 3, points.clone())
+                .map_err(|e| invalid(span, Key::ControlPoints, e.to_string()))?;
+            return Ok(ShapeKind::BezierPatches {
+                patches: vec![patch],
+                method,
+            });
+        }
+        _ => return Err(Fields::wrong(field, "a file name or 16 points `(x, y, z)`")),
+    };
     let path = base.join(file);
     let fail = |reason: String| {
         SceneError::at(

@@ -351,6 +351,18 @@ impl<'a> Lexer<'a> {
     /// A file name: `"quoted text"` (no escapes; ends on the same line), or raw characters up
     /// to the next blank or `//`. Leading blanks on the same line are skipped; the name must
     /// start on the current line. Returns the name and where it starts.
+    /// Skips spaces and tabs and returns the next character if it is on this line: lets the
+    /// parser choose between a file name (raw text) and inline values (tokens) for one key.
+    pub(crate) fn next_char_on_line(&mut self) -> Option<char> {
+        while self
+            .peek_char()
+            .is_some_and(|c| c.is_whitespace() && c != '\n')
+        {
+            self.bump();
+        }
+        self.peek_char().filter(|&c| c != '\n')
+    }
+
     pub(crate) fn path(&mut self) -> Result<(String, Span), SceneError> {
         while self
             .peek_char()

@@ -59,18 +59,28 @@ fn print_block(out: &mut String, block: &Block) {
     }
 }
 
+fn print_tuple(out: &mut String, items: &[Expr]) {
+    out.push('(');
+    for (i, e) in items.iter().enumerate() {
+        if i > 0 {
+            out.push_str(", ");
+        }
+        print_expr(out, e);
+    }
+    out.push(')');
+}
+
 fn print_value(out: &mut String, value: &Value) {
     match value {
         Value::Number(e) => print_expr(out, e),
-        Value::Tuple(items) => {
-            out.push('(');
-            for (i, e) in items.iter().enumerate() {
+        Value::Tuple(items) => print_tuple(out, items),
+        Value::Points(points) => {
+            for (i, p) in points.iter().enumerate() {
                 if i > 0 {
-                    out.push_str(", ");
+                    out.push(' ');
                 }
-                print_expr(out, e);
+                print_tuple(out, p);
             }
-            out.push(')');
         }
         Value::Switch(on) => out.push_str(if *on { "ON" } else { "OFF" }),
         Value::Shape(s) => out.push_str(s.name()),
@@ -93,6 +103,7 @@ fn print_value(out: &mut String, value: &Value) {
         Value::Path(p) => {
             let raw_ok = !p.is_empty()
                 && !p.starts_with('"')
+                && !p.starts_with('(')
                 && !p.contains("//")
                 && !p.chars().any(char::is_whitespace);
             if raw_ok {
@@ -302,6 +313,12 @@ mod tests {
             ValueKind::Path => prop_oneof!["[a-zA-Z0-9_./=#()-]{1,12}", "[a-z ]{1,6}/[a-z. ]{1,6}"]
                 .prop_map(Value::Path)
                 .boxed(),
+            ValueKind::ControlPoints => prop_oneof![
+                value(ValueKind::Path),
+                prop::collection::vec(prop::collection::vec(expr(), 3), 1..18)
+                    .prop_map(Value::Points),
+            ]
+            .boxed(),
             ValueKind::Word => "[a-zA-Z_][a-zA-Z0-9_]{0,6}".prop_map(Value::Word).boxed(),
         }
     }

@@ -126,6 +126,9 @@ pub enum Value {
     Bounds(Option<Box<[[Expr; 2]; 3]>>),
     /// A file name, as written (quotes removed).
     Path(String),
+    /// Inline points `(x, y, z) (x, y, z) …` (`Control points` of a Bézier patch), each
+    /// exactly three expressions; the list may span lines.
+    Points(Vec<Vec<Expr>>),
     /// A name (`Name` of a texture, `Texture` of an object), as written.
     Word(String),
 }
@@ -460,6 +463,8 @@ pub(crate) enum ValueKind {
     Bounds,
     /// A file name.
     Path,
+    /// A file name, or inline points `(x, y, z) …` when the value starts with `(`.
+    ControlPoints,
     /// A name.
     Word,
 }
@@ -522,7 +527,7 @@ fn object_key_use(shape: Option<ShapeType>, key: Key) -> KeyUse {
         Key::Equation => V::Number,
         Key::Center | Key::Origin | Key::Normal | Key::Min | Key::Max | Key::Axis => V::Vector,
         Key::A | Key::B | Key::C | Key::D | Key::Size => V::Vector,
-        Key::ControlPoints => V::Path,
+        Key::ControlPoints => V::ControlPoints,
         Key::Method => V::Word,
         _ => return KeyUse::Unknown,
     };
@@ -675,12 +680,24 @@ impl<'a> Parser<'a> {
         let mut words = vec![(word.clone(), first.span.clone())];
         let mut last_end = end_of(&first);
         let mut power = None;
+        // Stam's reader (`GetPatch`, ray1.c) writes `Control points in FILE`: `in` stands for `=`.
+        let mut stam_in = false;
         loop {
             let t = self.peek()?.clone();
             if t.span.line != line {
                 break;
             }
             match &t.tok {
+                Tok::Word(w)
+                    if w.eq_ignore_ascii_case("in")
+                        && words.len() == 2
+                        && words[0].0.eq_ignore_ascii_case("control")
+                        && words[1].0.eq_ignore_ascii_case("points") =>
+                {
+                    self.next()?;
+                    stam_in = true;
+                    break;
+                }
                 Tok::Word(w) => {
                     words.push((w.clone(), t.span.clone()));
                     self.next()?;
@@ -711,39 +728,41 @@ impl<'a> Parser<'a> {
             phrase.push('^');
             phrase.push_str(p);
         }
-        let t = self.peek()?.clone();
-        if t.tok != Tok::Eq || t.span.line != line {
-            // `Shadows ON`: point at the word after the longest known key, not at the end.
-            for n in (1..words.len()).rev() {
-                let prefix = words[..n]
-                    .iter()
-                    .map(|(w, _)| w.as_str())
-                    .collect::<Vec<_>>()
-                    .join(" ");
-                if Key::from_phrase(&prefix).is_some() {
-                    let (next, span) = &words[n];
+        if !stam_in {
+            let t = self.peek()?.clone();
+            if t.tok != Tok::Eq || t.span.line != line {
+                // `Shadows ON`: point at the word after the longest known key, not at the end.
+                for n in (1..words.len()).rev() {
+                    let prefix = words[..n]
+                        .iter()
+                        .map(|(w, _)| w.as_str())
+                        .collect::<Vec<_>>()
+                        .join(" ");
+                    if Key::from_phrase(&prefix).is_some() {
+                        let (next, span) = &words[n];
+                        return Err(SceneError::at(
+                            span,
+                            ErrorKind::Expected {
+                                expected: format!("`=` after `{prefix}`"),
+                                found: format!("`{next}`"),
+                            },
+                        ));
+                    }
+                }
+                let what = format!("`=` after `{phrase}`");
+                if t.span.line != line {
                     return Err(SceneError::at(
-                        span,
+                        &last_end,
                         ErrorKind::Expected {
-                            expected: format!("`=` after `{prefix}`"),
-                            found: format!("`{next}`"),
+                            expected: what,
+                            found: "end of line".into(),
                         },
                     ));
                 }
+                return Err(self.expected(&t, what));
             }
-            let what = format!("`=` after `{phrase}`");
-            if t.span.line != line {
-                return Err(SceneError::at(
-                    &last_end,
-                    ErrorKind::Expected {
-                        expected: what,
-                        found: "end of line".into(),
-                    },
-                ));
-            }
-            return Err(self.expected(&t, what));
+            self.next()?;
         }
-        self.next()?;
 
         if words[0].0.eq_ignore_ascii_case("let") && power.is_none() {
             let [_, (name, name_span)] = <[_; 2]>::try_from(words).map_err(|_| {
@@ -857,6 +876,16 @@ impl<'a> Parser<'a> {
             // Checked before peeking: a file name is not made of tokens.
             return self.path_value();
         }
+        if kind == ValueKind::ControlPoints {
+            if let Some(t) = self.peeked.take() {
+                self.lexer.rewind(&t);
+            }
+            // A file name cannot start with `(` unquoted (the printer quotes such names).
+            if self.lexer.next_char_on_line() != Some('(') {
+                return self.path_value();
+            }
+            return self.point_list(key);
+        }
         let span = self.peek()?.span.clone();
         let unknown = |found: String, expected: &'static str, span: &Span| {
             SceneError::at(
@@ -943,7 +972,7 @@ impl<'a> Parser<'a> {
             }
             ValueKind::Bounds => self.bounds(key)?,
             ValueKind::Word => Value::Word(self.word_value(key, "a name")?.0),
-            ValueKind::Path => return self.path_value(),
+            ValueKind::Path | ValueKind::ControlPoints => return self.path_value(),
         };
         Ok(Spanned { value, span })
     }
@@ -967,6 +996,35 @@ impl<'a> Parser<'a> {
         }
         Ok(Spanned {
             value: Value::Path(path),
+            span,
+        })
+    }
+
+    /// Inline points `(x, y, z) (x, y, z) …`, on one line or several: the list ends at the
+    /// first token that is not `(` (the next key or command).
+    fn point_list(&mut self, key: Key) -> Result<Spanned<Value>, SceneError> {
+        let span = self.peek()?.span.clone();
+        let mut points = Vec::new();
+        while self.peek()?.tok == Tok::LParen {
+            let at = self.peek()?.span.clone();
+            let found = match self.tuple_or_expr()? {
+                Value::Tuple(items) if items.len() == 3 => {
+                    points.push(items);
+                    continue;
+                }
+                Value::Tuple(items) => format!("{} components", items.len()),
+                _ => "a single number".to_owned(),
+            };
+            return Err(SceneError::at(
+                &at,
+                ErrorKind::Expected {
+                    expected: format!("a point `(x, y, z)` in `{}`", key.name()),
+                    found,
+                },
+            ));
+        }
+        Ok(Spanned {
+            value: Value::Points(points),
             span,
         })
     }
