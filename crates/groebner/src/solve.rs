@@ -45,6 +45,13 @@ const VANISH_REL: f64 = 1.0 / (1u64 << 26) as f64;
 /// residual test rejects (see `near_double_roots`).
 const NEAR_DOUBLE_REL: f64 = 1.0 / (1u64 << 26) as f64;
 
+/// Exact mode: precisions (bits after the binary point) to which a `u`-root is narrowed, in
+/// turn, when the `v` obtained from a derived basis element at the `f64` value of the root does
+/// not verify. A shape element `v + h(u)` turns an error `δu` into `|h'(u)|·δu`; `h'` reached
+/// 1.5e18 (2⁶⁰) on a teapot piece, and `x_tol` is about 2⁻³³, so 96 bits leave margin there and
+/// the larger levels cover worse cases at growing cost (exact bisection, one evaluation per bit).
+const SHARPEN_BITS: [u32; 3] = [96, 192, 384];
+
 /// Newton iterations used to polish a candidate on the original equations.
 ///
 /// Candidates start within `x_tol` (or the eliminant's conditioning) of the root, so one step
@@ -185,7 +192,10 @@ pub struct Solution {
 ///    the basis elements involving `v` (lowest `Deg_v` first, then `F1` and `F2`; for
 ///    resultants `F1`, `F2`) that does not vanish identically at `u_r`. The roots of the common
 ///    part `gcd(F1(u_r, ·), F2(u_r, ·))` are among them, and the basis element is not assumed
-///    to be linear in `v` (shape form fails, e.g. on the teapot rim).
+///    to be linear in `v` (shape form fails, e.g. on the teapot rim). In exact mode a derived
+///    element whose candidates do not verify is retried at the `u`-root narrowed exactly (to
+///    `SHARPEN_BITS`): a shape element `v + h(u)` can have `|h'| ~ 1e18` at a root, so the
+///    `f64` value of `u_r` is not precise enough to substitute into it.
 /// 4. Each candidate is polished by Newton's method on `F1`, `F2` and kept if it passes the
 ///    residual test of [`Root`] and lies in the widened box; duplicates closer than `4·x_tol`
 ///    are merged. This is where extraneous factors (a `u`-root with only complex `v`, the
@@ -243,7 +253,7 @@ pub fn solve<T: SolveScalar>(
             eliminate_resultant(f1, f2, opts.method, &mut stats)?
         }
     };
-    let (eliminant, v_sources) = match elim {
+    let (eliminant, v_sources, originals) = match elim {
         Elimination::Verdict(verdict) => {
             return Ok(Solution {
                 roots: Vec::new(),
@@ -254,7 +264,8 @@ pub fn solve<T: SolveScalar>(
         Elimination::Eliminant {
             eliminant,
             v_sources,
-        } => (eliminant, v_sources),
+            originals,
+        } => (eliminant, v_sources, originals),
     };
     stats.u_degree = eliminant.degree();
     let widen = |r: [f64; 2]| [r[0] - opts.x_tol, r[1] + opts.x_tol];
@@ -271,17 +282,41 @@ pub fn solve<T: SolveScalar>(
         // Step 3: the first source that does not vanish at u gives the candidates; if none of
         // them verifies (an ill-conditioned element, or an extraneous u-root), the next
         // sources, ending with F1 and F2 (the gcd of F1(u, ·), F2(u, ·)), are tried.
-        for g in &v_sources {
-            let Some(candidates) = v_candidates(g, u, vb, opts.x_tol) else {
-                continue; // g(u, v) ≡ 0
-            };
+        for (index, g) in v_sources.iter().enumerate() {
+            // In exact mode a derived element (not F1, F2) is retried at u-roots narrowed
+            // exactly to SHARPEN_BITS: its v can be arbitrarily sensitive to u.
+            let derived = T::EXACT && index + originals < v_sources.len();
+            let levels: &[u32] = if derived { &SHARPEN_BITS } else { &[] };
+            let mut rejected = 0;
             let before = roots.len();
-            for v in candidates {
-                match polish_and_verify(&system, u, v, opts, ub, vb) {
-                    Some(r) => roots.push(r),
-                    None => stats.rejected += 1,
+            for level in std::iter::once(None).chain(levels.iter().copied().map(Some)) {
+                // ut within u_err of the root: 2·x_tol covers real_roots_in's x_tol.
+                let (ut, u_err) = match level {
+                    None => (T::from_f64_exact(u), 2.0 * opts.x_tol),
+                    Some(bits) => (
+                        T::sharpen_root(&eliminant, u, opts.x_tol, bits),
+                        (-f64::from(bits)).exp2(),
+                    ),
+                };
+                let (Some(ut), Some(u_err)) = (ut, T::from_f64(u_err)) else {
+                    continue;
+                };
+                let Some(candidates) = v_candidates(g, &ut, &u_err, vb, opts.x_tol) else {
+                    continue; // g(u, v) ≡ 0
+                };
+                let uf = ut.nearest_f64();
+                rejected = 0;
+                for v in candidates {
+                    match polish_and_verify(&system, uf, v, opts, ub, vb) {
+                        Some(r) => roots.push(r),
+                        None => rejected += 1,
+                    }
+                }
+                if roots.len() > before {
+                    break;
                 }
             }
+            stats.rejected += rejected;
             if roots.len() > before {
                 break;
             }
@@ -323,6 +358,8 @@ enum Elimination<T> {
     Eliminant {
         eliminant: Poly<T>,
         v_sources: Vec<BiPoly<T>>,
+        /// How many of the last `v_sources` are the input polynomials themselves.
+        originals: usize,
     },
 }
 
@@ -365,6 +402,7 @@ fn eliminate_groebner<T: SolveScalar>(
     Ok(Elimination::Eliminant {
         eliminant,
         v_sources,
+        originals: 2,
     })
 }
 
@@ -414,6 +452,7 @@ fn eliminate_resultant<T: SolveScalar>(
         return Ok(Elimination::Eliminant {
             eliminant,
             v_sources: vec![other.clone()],
+            originals: 1,
         });
     }
     let res = match method {
@@ -435,9 +474,11 @@ fn eliminate_resultant<T: SolveScalar>(
     v_sources.retain(|g| g.deg_v() > 0);
     v_sources.sort_by_key(BiPoly::deg_v);
     stats.v_degree = v_sources.first().map_or(0, BiPoly::deg_v);
+    let originals = v_sources.len();
     Ok(Elimination::Eliminant {
         eliminant: res,
         v_sources,
+        originals,
     })
 }
 
@@ -477,27 +518,41 @@ fn near_double_roots<T: SolveScalar>(
 }
 
 /// Candidate `v` values at `u` from one source `g`: the real roots of `g(u, ·)` in `vb`, or
-/// `None` when `g(u, ·)` vanishes identically (every coefficient below [`VANISH_REL`] times the
-/// size of its terms). Exact sources are evaluated exactly at the rational value of `u`, so
-/// their (large) coefficients do not cancel in floating point.
+/// `None` when `g(u, ·)` vanishes identically.
+///
+/// "Vanishes" is decided per coefficient `c_j(u)` of `v^j`:
+/// * `f64` sources: `|c_j(u)|` below [`VANISH_REL`] times the size of its terms;
+/// * exact sources, evaluated exactly at the rational `ut` that lies within `u_err` of the true
+///   root `u_r`: `|c_j(ut)| ≤ 2·u_err·Σ i|a_i|(|ut| + u_err)^{i−1}`, i.e. when the first-order
+///   bound on `|c_j(ut) − c_j(u_r)|` cannot certify `c_j(u_r) ≠ 0`. No fixed threshold: a
+///   coefficient that is small only because its terms cancel (a shape element `v + h(u)` with
+///   huge `h` at a root, `paper-notes/groebner.md` §5) is kept once `ut` is close enough.
 fn v_candidates<T: SolveScalar>(
     g: &BiPoly<T>,
-    u: f64,
+    ut: &T,
+    u_err: &T,
     vb: [f64; 2],
     x_tol: f64,
 ) -> Option<Vec<f64>> {
-    let ut = T::from_f64_exact(u)?;
     let au = ut.abs();
+    let au_wide = au.clone() + u_err;
+    let two = T::one() + T::one();
     let vanish = T::from_f64(VANISH_REL).expect("a small constant");
     let mut coeffs: Vec<T> = Vec::with_capacity(g.rows());
     let mut significant = false;
     for row in g.rows_iter() {
-        let (mut c, mut s) = (T::zero(), T::zero());
+        // Value, size of the terms, and bound on the derivative's size over the u interval.
+        let (mut c, mut s, mut ds) = (T::zero(), T::zero(), T::zero());
         for a in row.iter().rev() {
-            c = c * &ut + a;
-            s = s * &au + a.abs();
+            c = c * ut + a;
+            ds = ds * &au_wide + &s;
+            s = s * &au_wide + a.abs();
         }
-        let vanished = c.abs() <= vanish.clone() * s;
+        let vanished = if T::EXACT {
+            c.abs() <= two.clone() * u_err * ds
+        } else {
+            c.abs() <= vanish.clone() * s
+        };
         significant |= !vanished;
         coeffs.push(if vanished { T::zero() } else { c });
     }
@@ -723,6 +778,67 @@ mod tests {
                 (sol.stats.u_degree, sol.stats.v_degree),
                 (1, 2),
                 "{:?}",
+                sol.stats
+            );
+        }
+    }
+
+    /// Two circles of radius 0.3 centred at `(0.4, 0.5)` and `(0.7, 0.5 + δ)`: two crossings
+    /// `(u, v)` whose `u` differ by only about `δ`, while their `v` differ by ~0.52.
+    fn near_vertical_pair(delta: &Rat) -> (BiPoly<Rat>, BiPoly<Rat>, [(f64, f64); 2]) {
+        let r = |n: i64, d: i64| Rat::new(n.into(), d.into());
+        let circle = |cu: Rat, cv: Rat| {
+            // (u − cu)² + (v − cv)² − 9/100
+            BiPoly::from_terms([
+                (q(1), 2, 0),
+                (-(q(2) * &cu), 1, 0),
+                (q(1), 0, 2),
+                (-(q(2) * &cv), 0, 1),
+                (&cu * &cu + &cv * &cv - r(9, 100), 0, 0),
+            ])
+        };
+        let f1 = circle(r(2, 5), r(1, 2));
+        let f2 = circle(r(7, 10), r(1, 2) + delta);
+        // Crossings: on the perpendicular bisector of the centres, 0.2598… from their midpoint.
+        let d = delta.nearest_f64();
+        let (mu, mv, len) = (0.55, 0.5 + d / 2.0, (0.09 + d * d).sqrt());
+        let h = (0.09 - len * len / 4.0).sqrt();
+        let (nu, nv) = (-d / len, 0.3 / len);
+        let roots = [(mu - h * nu, mv - h * nv), (mu + h * nu, mv + h * nv)];
+        (f1, f2, roots)
+    }
+
+    #[test]
+    fn exact_back_substitution_into_an_ill_conditioned_shape_element() {
+        // The reduced basis is {v + h(u), e(u)} with h' ≈ 0.3/δ ≈ 3e11 at the roots: the
+        // f64 value of a u-root (within x_tol = 1e-10) put into v + h(u) gives a v off by ~30,
+        // so the Gröbner element's candidate was rejected and only the F1/F2 fallback found
+        // the root (the teapot case of paper-notes/groebner.md §5: h' ≈ 1.5e18). In exact mode
+        // the u-root is now narrowed exactly before the substitution.
+        let delta = Rat::new(1.into(), (1i64 << 40).into());
+        let (f1, f2, expected) = near_vertical_pair(&delta);
+        let mut expected = expected.to_vec();
+        expected.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for m in [Method::Stam, Method::Buchberger] {
+            let sol = solve(
+                &f1,
+                &f2,
+                &SolveOptions {
+                    method: m,
+                    ..SolveOptions::default()
+                },
+            )
+            .unwrap();
+            assert_roots(&sol, &expected, 1e-9, &format!("{m:?}"));
+            assert_eq!(
+                (sol.stats.u_degree, sol.stats.v_degree),
+                (2, 1),
+                "{m:?}: shape form {{v + h(u), e(u)}}: {:?}",
+                sol.stats
+            );
+            assert_eq!(
+                sol.stats.rejected, 0,
+                "{m:?}: the basis element's v verified at both roots: {:?}",
                 sol.stats
             );
         }
