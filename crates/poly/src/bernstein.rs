@@ -283,11 +283,16 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         let v = node.v.at();
         let n = self.n();
         let sign = |i: usize| -> i8 { i8::from(v[i] > err) - i8::from(-v[i] > err) };
-        if v[..=n].iter().all(|x| x.abs() <= err) {
-            // Every coefficient is within its error bound: halving only averages them, so
-            // no descendant can be decided in this run.
-            return Class::Hopeless;
-        }
+        // Called only when some sign is uncertain (off the common path).
+        let undecided = || {
+            if v[..=n].iter().all(|x| x.abs() <= err) {
+                // Every coefficient is within its error bound: halving only averages them,
+                // so no descendant can be decided in this run.
+                Class::Hopeless
+            } else {
+                Class::Split
+            }
+        };
         let first = if node.u0 == 0.0 { self.s_min } else { sign(0) };
         let last = if node.u1 == 1.0 && self.w_exact {
             self.s_max
@@ -295,14 +300,14 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
             sign(n)
         };
         if first == 0 || last == 0 {
-            return Class::Split;
+            return undecided();
         }
         let mut prev = first;
         let mut changes = 0u32;
         for i in 1..n {
             let s = sign(i);
             if s == 0 {
-                return Class::Split;
+                return undecided();
             }
             changes += u32::from(s != prev);
             prev = s;

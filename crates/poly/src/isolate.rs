@@ -101,6 +101,10 @@ fn zero_root_split(
     b: f64,
     opts: &RootOptions,
 ) -> Result<Option<(Poly<f64>, f64, f64)>, RootError> {
+    if p.coeffs().first() != Some(&0.0) {
+        // The common case, without validating twice (the caller's path validates).
+        return Ok(None);
+    }
     let Range::Search { lo, hi } = prepare(p, a, b, opts.x_tol)? else {
         return Ok(None);
     };
