@@ -394,6 +394,54 @@ proptest! {
         }
     }
 
+    /// Clusters (gaps down to 2^-40), roots on dyadic split points and an exact factor x^k:
+    /// the default path's restarts and local exact pieces give the exact answers for the
+    /// stored coefficients (count, each root within x_tol, first root, isolating intervals).
+    #[test]
+    fn certified_search_agrees_with_exact_on_clusters_and_split_points(
+        centre in -0.9f64..0.9,
+        dyadic in any::<bool>(),
+        gaps in prop::collection::vec(1i32..40, 1..4),
+        others in prop::collection::vec(-1.0f64..1.0, 0..4),
+        zeros in 0usize..3,
+        lo in -1.0f64..0.0,
+    ) {
+        let c = if dyadic { (centre * 8.0).round() / 8.0 } else { centre };
+        let mut roots = vec![c];
+        for g in &gaps {
+            let last = *roots.last().unwrap();
+            roots.push(last + 2f64.powi(-g));
+        }
+        roots.extend(&others);
+        let mut coeffs = vec![0.0; zeros];
+        coeffs.extend(Poly::<f64>::from_roots(&roots).coeffs());
+        let p = Poly::new(coeffs);
+        let x_tol = 1e-11;
+        let opts = RootOptions::new(x_tol);
+        for (a, b) in [(-1.0, 1.0), (lo, 1.0), (-1.0, c)] {
+            let want = exact_roots(&p, a, b);
+            let mut stats = RootStats::default();
+            let got = p.real_roots_with(a, b, &opts, &mut stats).unwrap();
+            prop_assert_eq!(got.len(), want.len(), "({}, {}]: {:?} vs {:?}", a, b, got, want);
+            for (g, w) in got.iter().zip(&want) {
+                prop_assert!(close(*g, *w, x_tol), "{} vs {}", g, w);
+            }
+            let first = p.smallest_root_with(a, b, &opts, &mut stats);
+            prop_assert_eq!(first.is_some(), !want.is_empty());
+            if let (Some(g), Some(w)) = (first, want.first()) {
+                prop_assert!(close(g, *w, x_tol), "first {} vs {}", g, w);
+            }
+            let ivs = p.isolate_roots_with(a, b, &opts, &mut stats).unwrap();
+            prop_assert_eq!(ivs.len(), want.len());
+            for (iv, w) in ivs.iter().zip(&want) {
+                // The oracle value is within 2^-80 below its root, which is in the interval
+                // (or is the point).
+                prop_assert!(iv.lo - 1e-24 <= *w && *w <= iv.hi, "{:?} vs {}", iv, w);
+            }
+            prop_assert!(stats.exact_fallbacks <= 3, "at most one per query");
+        }
+    }
+
     /// Stam's bisection and the fast refinements return the same root (within tolerance).
     #[test]
     fn refinement_methods_agree(
