@@ -78,7 +78,8 @@ pub fn render_scene(
         s
     });
     let scene = overridden.as_ref().unwrap_or(scene);
-    let prepared = PreparedScene::new(scene)?;
+    let mut prepared = PreparedScene::new(scene)?;
+    prepared.roots = opts.roots;
     let settings = RenderSettings {
         size,
         resolution: scene.viewport.resolution,

@@ -58,4 +58,4 @@ pub use crate::prepared::{PreparedScene, Primitive};
 pub use crate::renderer::{Film, RenderOutput, RenderSettings, render};
 pub use crate::scene::Scene;
 pub use crate::stats::{KindStats, PhaseTimes, StatsReport, TraceStats};
-pub use crate::workspace::Workspace;
+pub use crate::workspace::{RootMethods, Workspace};

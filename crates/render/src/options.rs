@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use crate::output::PngOptions;
 use crate::scene::Scene;
 use crate::surface::PatchMethod;
+use crate::workspace::RootMethods;
 
 /// Options that override or complete the scene's own settings. The command line is parsed into
 /// a raw argument struct and then into this; library users fill it directly.
@@ -24,6 +25,8 @@ pub struct RenderOptions {
     pub png: PngOptions,
     /// Elimination method for every Bézier patch, overriding the scene's `Method`.
     pub patch_method: Option<PatchMethod>,
+    /// Root finder of the implicit surfaces.
+    pub roots: RootMethods,
 }
 
 impl Default for RenderOptions {
@@ -37,6 +40,7 @@ impl Default for RenderOptions {
             depth: None,
             png: PngOptions::default(),
             patch_method: None,
+            roots: RootMethods::default(),
         }
     }
 }

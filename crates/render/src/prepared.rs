@@ -8,6 +8,7 @@ use crate::scene::{
 use crate::surface::{
     AaBox, Algebraic, Implicit, Plane, Polygon, Sphere, Superquadric, Surface, Torus, Transformed,
 };
+use crate::workspace::RootMethods;
 
 /// A surface with its material: Surface + Material = Object (STYLE.md §6).
 #[derive(Debug)]
@@ -29,6 +30,8 @@ pub struct PreparedScene {
     pub world: World,
     /// Textures referenced by materials.
     pub textures: Vec<Texture>,
+    /// The root finder of the implicit surfaces (default: certified Bernstein).
+    pub roots: RootMethods,
 }
 
 impl PreparedScene {
@@ -59,6 +62,7 @@ impl PreparedScene {
             lights: scene.lights.clone(),
             world: scene.world.clone(),
             textures: scene.textures.clone(),
+            roots: RootMethods::default(),
         })
     }
 }

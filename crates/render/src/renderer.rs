@@ -123,10 +123,13 @@ pub fn render(
             .par_chunks_mut(band)
             .zip(depth.par_chunks_mut(band))
             .enumerate()
-            .fold(Workspace::new, |mut ws, (cy, (bp, bd))| {
-                render_band(&mut ws, cy, bp, bd);
-                ws
-            })
+            .fold(
+                || Workspace::with_roots(scene.roots),
+                |mut ws, (cy, (bp, bd))| {
+                    render_band(&mut ws, cy, bp, bd);
+                    ws
+                },
+            )
             .map(|ws| ws.stats)
             .reduce(TraceStats::default, |mut a, b| {
                 a.merge(&b);
@@ -136,10 +139,13 @@ pub fn render(
         pixels
             .par_chunks_mut(band)
             .enumerate()
-            .fold(Workspace::new, |mut ws, (cy, bp)| {
-                render_band(&mut ws, cy, bp, &mut []);
-                ws
-            })
+            .fold(
+                || Workspace::with_roots(scene.roots),
+                |mut ws, (cy, bp)| {
+                    render_band(&mut ws, cy, bp, &mut []);
+                    ws
+                },
+            )
             .map(|ws| ws.stats)
             .reduce(TraceStats::default, |mut a, b| {
                 a.merge(&b);

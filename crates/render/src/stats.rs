@@ -4,9 +4,10 @@ use std::fmt;
 use std::ops::AddAssign;
 use std::time::Duration;
 
-use poly::{RootStats, STATS_DEGREES};
+use poly::{IsolationMethod, RefineMethod, RootStats, STATS_DEGREES};
 
 use crate::surface::{PatchStats, SurfaceKind};
+use crate::workspace::RootMethods;
 
 /// Counters filled in while tracing. Each worker thread owns one (inside its
 /// [`Workspace`](crate::Workspace)); the totals are summed with [`TraceStats::merge`].
@@ -139,6 +140,8 @@ pub struct StatsReport<'a> {
     pub samples_per_pixel: u32,
     /// Worker threads.
     pub threads: usize,
+    /// The implicit surfaces' root finder.
+    pub roots: RootMethods,
 }
 
 impl fmt::Display for StatsReport<'_> {
@@ -212,7 +215,21 @@ impl fmt::Display for StatsReport<'_> {
             s.singular_normals
         )?;
         let r = &s.roots;
+        let isolation = match self.roots.isolation {
+            IsolationMethod::Bernstein => "certified Bernstein",
+            IsolationMethod::Sturm => "f64 Sturm",
+            IsolationMethod::StamSturm => "Stam's 1988 Sturm",
+            IsolationMethod::Exact => "exact rational Sturm",
+            _ => "other",
+        };
+        let refine = match self.roots.refine {
+            RefineMethod::NewtonBisection => "Newton-bisection",
+            RefineMethod::Illinois => "Illinois",
+            RefineMethod::Bisection => "bisection",
+            _ => "other",
+        };
         writeln!(f, "Polynomial root queries              {:>12}", r.queries)?;
+        writeln!(f, "  isolation, refinement     {isolation}, {refine}")?;
         for (deg, n) in r.by_degree.iter().enumerate() {
             if *n > 0 {
                 let plus = if deg == STATS_DEGREES - 1 { "+" } else { " " };
@@ -238,6 +255,16 @@ impl fmt::Display for StatsReport<'_> {
             f,
             "  refinement fallbacks               {:>12}",
             r.refine_fallbacks
+        )?;
+        writeln!(
+            f,
+            "  isolation subdivisions             {:>12}",
+            r.subdivisions
+        )?;
+        writeln!(
+            f,
+            "  refinement evaluations             {:>12}",
+            r.refine_evals
         )?;
         writeln!(
             f,

@@ -151,6 +151,8 @@ fn bad_input_is_an_error_not_a_panic() {
         ["--samples", "0"],
         ["--bits", "12"],
         ["--gamma", "zero"],
+        ["--isolation", "fast"],
+        ["--refine", "secant"],
     ] {
         std::fs::write(dir.path().join("t.scene"), SCENE).unwrap();
         let out = run(dir.path(), &["t.scene", bad[0], bad[1]]);
@@ -160,5 +162,79 @@ fn bad_input_is_an_error_not_a_panic() {
             stderr.contains(bad[0]),
             "{bad:?}: names the option: {stderr}"
         );
+    }
+}
+
+/// `--isolation` and `--refine` change only the root finder: every solver setting gives the
+/// exact reference's depth map (rational Sturm on the stored polynomials) to within the
+/// renderer's root tolerance (`2^-33` of the torus's box diagonal) plus the PFM's `f32`
+/// rounding (one step is `9.5e-7` at the depths here, below 16).
+#[test]
+fn root_finder_options_agree_with_the_exact_reference_render() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("t.scene"), SCENE).unwrap();
+    let depth = |name: &str, extra: &[&str]| {
+        let mut args = vec!["t.scene", "-o", "x.png", "--depth", name];
+        args.extend_from_slice(extra);
+        let out = run(dir.path(), &args);
+        assert!(
+            out.status.success(),
+            "{extra:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let bytes = std::fs::read(dir.path().join(name)).unwrap();
+        render::read_pfm(&bytes).expect("a PFM").2
+    };
+    let reference = depth(
+        "exact.pfm",
+        &["--isolation", "exact", "--refine", "bisection"],
+    );
+    // The options reach the solver: `--stats` names it and its work differs.
+    let stats = |extra: &[&str]| {
+        let mut args = vec!["t.scene", "-o", "x.png", "--stats"];
+        args.extend_from_slice(extra);
+        let out = String::from_utf8_lossy(&run(dir.path(), &args).stdout).into_owned();
+        let line = |name: &str| {
+            out.lines()
+                .find(|l| l.trim_start().starts_with(name))
+                .unwrap_or_else(|| panic!("no `{name}` in {out}"))
+                .to_owned()
+        };
+        (
+            line("isolation, refinement"),
+            line("refinement evaluations"),
+        )
+    };
+    let (default_name, default_evals) = stats(&[]);
+    let (exact_name, exact_evals) = stats(&["--isolation", "exact", "--refine", "bisection"]);
+    assert!(
+        default_name.contains("certified Bernstein, Newton-bisection"),
+        "{default_name}"
+    );
+    assert!(
+        exact_name.contains("exact rational Sturm, bisection"),
+        "{exact_name}"
+    );
+    assert_ne!(
+        default_evals, exact_evals,
+        "different refinement, different work"
+    );
+    let hits = reference.iter().filter(|d| d.is_finite()).count();
+    assert!(
+        hits > 50 && hits < reference.len(),
+        "{hits} of {} pixels hit",
+        reference.len()
+    );
+    for extra in [
+        &[][..],
+        &["--refine", "illinois"][..],
+        &["--isolation", "sturm", "--refine", "bisection"][..],
+        &["--isolation", "stam"][..],
+    ] {
+        let d = depth("d.pfm", extra);
+        for (i, (a, b)) in d.iter().zip(&reference).enumerate() {
+            let same = (a.is_infinite() && b.is_infinite()) || (a - b).abs() <= 1e-6;
+            assert!(same, "{extra:?}: pixel {i}: {a} vs exact {b}");
+        }
     }
 }

@@ -1,6 +1,6 @@
 //! The `render` command line: `render SCENE [-o OUT.png] [--size WxH] [--threads N]
 //! [--samples N] [--stats] [--depth OUT.pfm] [--bits 8|16] [--alpha] [--gamma G]
-//! [--patch-method groebner|resultant]`.
+//! [--patch-method groebner|resultant] [--isolation METHOD] [--refine METHOD]`.
 //!
 //! Arguments are parsed into a raw struct, converted to `RenderOptions`, and handed to the
 //! library; no rendering logic lives here.
@@ -14,8 +14,9 @@ use std::time::{Duration, Instant};
 use anyhow::Context;
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use poly::{IsolationMethod, RefineMethod};
 use render::surface::PatchMethod;
-use render::{Gamma, PngOptions, RenderOptions, StatsReport};
+use render::{Gamma, PngOptions, RenderOptions, RootMethods, StatsReport};
 
 /// Delay before the progress bar appears: renders shorter than this show nothing.
 const PROGRESS_DELAY: Duration = Duration::from_secs(1);
@@ -57,6 +58,36 @@ struct RawArgs {
     /// references `groebner-exact`, `resultant-exact`), overriding the scene's `Method`.
     #[arg(long, value_name = "METHOD", value_parser = parse_patch_method)]
     patch_method: Option<PatchMethod>,
+    /// Root isolation for implicit surfaces: `bernstein` (certified, the default), `sturm`
+    /// (f64 Sturm, not certified), `stam` (Stam's 1988 Sturm, the baseline), or `exact`
+    /// (rational Sturm on the stored polynomial: a slow reference render).
+    #[arg(long, value_name = "METHOD", default_value = "bernstein", value_parser = parse_isolation)]
+    isolation: IsolationMethod,
+    /// Root refinement for implicit surfaces: `newton` (Newton–bisection, the default),
+    /// `illinois` (regula falsi) or `bisection`.
+    #[arg(long, value_name = "METHOD", default_value = "newton", value_parser = parse_refine)]
+    refine: RefineMethod,
+}
+
+fn parse_isolation(s: &str) -> Result<IsolationMethod, String> {
+    match s.to_ascii_lowercase().as_str() {
+        "bernstein" => Ok(IsolationMethod::Bernstein),
+        "sturm" => Ok(IsolationMethod::Sturm),
+        "stam" => Ok(IsolationMethod::StamSturm),
+        "exact" => Ok(IsolationMethod::Exact),
+        _ => Err(format!(
+            "expected bernstein, sturm, stam or exact, got `{s}`"
+        )),
+    }
+}
+
+fn parse_refine(s: &str) -> Result<RefineMethod, String> {
+    match s.to_ascii_lowercase().as_str() {
+        "newton" => Ok(RefineMethod::NewtonBisection),
+        "illinois" => Ok(RefineMethod::Illinois),
+        "bisection" => Ok(RefineMethod::Bisection),
+        _ => Err(format!("expected newton, illinois or bisection, got `{s}`")),
+    }
 }
 
 fn parse_patch_method(s: &str) -> Result<PatchMethod, String> {
@@ -113,6 +144,10 @@ impl RawArgs {
                 gamma: self.gamma,
             },
             patch_method: self.patch_method,
+            roots: RootMethods {
+                isolation: self.isolation,
+                refine: self.refine,
+            },
         }
     }
 }
@@ -156,6 +191,7 @@ fn run(args: &RawArgs) -> anyhow::Result<()> {
             size: [report.output.film.width, report.output.film.height],
             samples_per_pixel: opts.samples * opts.samples,
             threads: report.threads,
+            roots: opts.roots,
         };
         let mut out = std::io::stdout().lock();
         write!(out, "{stats}")?;

@@ -124,8 +124,10 @@ pub(crate) fn smallest_root_in(ws: &mut Workspace, lo: f64, hi: f64, x_tol: f64)
     } else {
         p.cauchy_bound().map(|b| b * (1.0 + 4.0 * f64::EPSILON))
     };
-    let root = hi
-        .and_then(|hi| p.smallest_root_with(lo, hi, &RootOptions::new(x_tol), &mut ws.stats.roots));
+    let mut opts = RootOptions::new(x_tol);
+    opts.isolation = ws.roots.isolation;
+    opts.refine = ws.roots.refine;
+    let root = hi.and_then(|hi| p.smallest_root_with(lo, hi, &opts, &mut ws.stats.roots));
     ws.coeffs = p.into_coeffs();
     root
 }
