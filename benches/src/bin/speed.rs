@@ -205,7 +205,9 @@ fn image_section(size: u32, err: &mut impl std::io::Write) -> Result<String> {
     let _ = writeln!(
         md,
         "## Image level: what the solver changes in a picture\n\n\
-         `render` does not expose a solver choice yet, so this traces, for every pixel of a \
+         `render --isolation/--refine` renders whole images with any solver (its \
+         `--isolation exact` solves the `f64`-restricted polynomial exactly); this table needs \
+         a stricter reference and per-pixel scoring, so it traces, for every pixel of a \
          {size}×{size} image, the two queries that decide what the pixel shows — the primary \
          hit and the shadow ray to the first light — with `render`'s camera and the same \
          restrictions and bounding volumes (`toolkit_benches::image`), swapping only the \
