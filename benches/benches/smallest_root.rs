@@ -6,7 +6,7 @@
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use poly::{IsolationMethod, RefineMethod, RootOptions, RootStats, rat_from_f64};
+use poly::{IsolationMethod, Poly, RefineMethod, RootOptions, RootStats, rat_from_f64};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use toolkit_benches::rays::{self, RayPoly, SCENE_TORUS};
@@ -76,5 +76,47 @@ fn smallest_root(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, smallest_root);
+/// The Bézier-patch tracer's root queries: the 374 recorded teapot queries of
+/// `crates/poly/tests/data/teapot_eliminants.txt` (resultant eliminants of degree 8–17, their
+/// derivatives, cubics in `v`), each answered as the solver does (`real_roots`), and as a
+/// smallest-root query; one iteration is the whole set.
+fn teapot_eliminants(c: &mut Criterion) {
+    let text = include_str!("../../crates/poly/tests/data/teapot_eliminants.txt");
+    let queries: Vec<(Poly<f64>, f64, f64, f64)> = text
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+        .map(|l| {
+            let f: Vec<f64> = l
+                .split_whitespace()
+                .skip(1)
+                .map(|s| s.parse().expect("a number"))
+                .collect();
+            (Poly::new(f[4..].to_vec()), f[0], f[1], f[2])
+        })
+        .collect();
+    let mut g = c.benchmark_group("teapot_eliminants_374");
+    g.bench_function("real_roots", |b| {
+        b.iter(|| {
+            let mut s = RootStats::default();
+            for (p, lo, hi, x_tol) in &queries {
+                let o = RootOptions::new(*x_tol);
+                black_box(black_box(p).real_roots_with(*lo, *hi, &o, &mut s).ok());
+            }
+            s
+        })
+    });
+    g.bench_function("smallest_root", |b| {
+        b.iter(|| {
+            let mut s = RootStats::default();
+            for (p, lo, hi, x_tol) in &queries {
+                let o = RootOptions::new(*x_tol);
+                black_box(black_box(p).smallest_root_with(*lo, *hi, &o, &mut s));
+            }
+            s
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, smallest_root, teapot_eliminants);
 criterion_main!(benches);
