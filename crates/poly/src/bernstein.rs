@@ -517,7 +517,7 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         let (mut t_a, mut s_a) = (floor, s_floor);
         if node.u0 > 0.0 {
             let x = w_u_a(self.w, node.u0, self.a).next_down();
-            if x > floor {
+            if x > floor && x < self.t_max {
                 let s = certified_sign(self.p, x);
                 if s != 0 {
                     (t_a, s_a) = (x, s);

@@ -137,6 +137,9 @@ impl<'p> CertifiedSearch<'p> {
         parent_mag: f64,
         stats: &mut RootStats,
     ) -> bool {
+        if lo >= hi {
+            return false;
+        }
         if self.runs_left == 0 {
             return self.exact(lo, hi, stats);
         }
