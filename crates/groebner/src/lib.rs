@@ -47,6 +47,7 @@ mod ray_patch;
 mod reduction;
 mod resultant;
 mod roots;
+mod small_resultant;
 mod solve;
 mod stam;
 #[cfg(test)]

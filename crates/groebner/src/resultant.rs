@@ -8,6 +8,7 @@
 use poly::{BiPoly, Poly, Scalar};
 
 use crate::error::Error;
+use crate::small_resultant::small_bezout_resultant;
 
 /// Largest matrix [`poly_matrix_det`] accepts. The division-free expansion costs
 /// O(n·2ⁿ) polynomial products (see its `# Complexity`); 16 allows `v`-degrees up to 8 in each
@@ -116,6 +117,10 @@ pub fn bezout_resultant_v<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> Result<Pol
     let n = f.deg_v().max(g.deg_v());
     if n == 0 {
         return Ok(Poly::constant(T::one()));
+    }
+    // The ray/bicubic case, per ray: the same determinant in fixed-size arrays.
+    if let Some(r) = small_bezout_resultant(f, g) {
+        return Ok(r);
     }
     let det = poly_matrix_det(&bezout_matrix_v(f, g))?;
     Ok(if (n * (n - 1) / 2) % 2 == 1 {
