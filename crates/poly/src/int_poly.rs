@@ -42,8 +42,25 @@ impl IntPoly {
     }
 
     /// Divides by the positive gcd of the coefficients.
+    ///
+    /// The gcd is accumulated from the smallest coefficient up, and each larger one is first
+    /// reduced modulo the running gcd (`gcd(g, c) = gcd(g, c mod g)`): one division instead of
+    /// a binary gcd over all of `c`'s bits, which dominated exact Sturm construction. Stops
+    /// as soon as the gcd is 1.
     fn primitive(mut self) -> Self {
-        let g = self.c.iter().fold(BigInt::zero(), |g, c| g.gcd(c));
+        let mut order: Vec<&BigInt> = self.c.iter().filter(|c| !c.is_zero()).collect();
+        order.sort_by_key(|c| c.bits());
+        let mut g = BigInt::zero();
+        for c in order {
+            g = if g.is_zero() {
+                c.abs()
+            } else {
+                g.gcd(&(c % &g))
+            };
+            if g.is_one() {
+                break;
+            }
+        }
         if !g.is_zero() && !g.is_one() {
             for x in &mut self.c {
                 *x /= &g;
@@ -138,10 +155,19 @@ impl IntPoly {
         };
         let (n, d) = (x.numer(), x.denom());
         let mut acc = top.clone();
-        let mut dpow = BigInt::one();
-        for c in self.c.iter().rev().skip(1) {
-            dpow *= d;
-            acc = acc * n + c * &dpow;
+        // Points from f64 numbers have a power-of-two denominator 2^k: then d^j is a shift.
+        if let Some(k) = d.trailing_zeros().filter(|&k| d.bits() == k + 1) {
+            let mut shift = 0u64;
+            for c in self.c.iter().rev().skip(1) {
+                shift += k;
+                acc = acc * n + (c << shift);
+            }
+        } else {
+            let mut dpow = BigInt::one();
+            for c in self.c.iter().rev().skip(1) {
+                dpow *= d;
+                acc = acc * n + c * &dpow;
+            }
         }
         sign_of(&acc)
     }

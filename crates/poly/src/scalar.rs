@@ -113,12 +113,16 @@ pub fn rat_from_f64(x: f64) -> Option<Rat> {
     } else {
         (frac | (1u64 << 52), exp_bits - 1075)
     };
+    // An odd mantissa over a power of two is already in lowest terms: no gcd needed (this
+    // conversion runs at every point where an exact Sturm sequence is evaluated).
+    let tz = mantissa.trailing_zeros();
+    let (mantissa, exponent) = (mantissa >> tz, exponent + i64::from(tz));
     let m = BigInt::from(mantissa);
     let m = if negative { -m } else { m };
     let r = if exponent >= 0 {
         Rat::from_integer(m << exponent as usize)
     } else {
-        Rat::new(m, BigInt::one() << (-exponent) as usize)
+        Rat::new_raw(m, BigInt::one() << (-exponent) as usize)
     };
     Some(r)
 }

@@ -312,10 +312,20 @@ fn int_sign_at(p: &QPoly, x: &Rat) -> i8 {
     );
     let (n, d) = (x.numer(), x.denom());
     let mut acc = top.numer().clone();
-    let mut dpow = num_bigint::BigInt::from(1);
-    for c in p.coeffs().iter().rev().skip(1) {
-        dpow *= d;
-        acc = acc * n + c.numer() * &dpow;
+    // Points from f64 numbers have a power-of-two denominator 2^k: then d^j is a shift.
+    let k = d.trailing_zeros().filter(|&k| d.bits() == k + 1);
+    if let Some(k) = k {
+        let mut shift = 0u64;
+        for c in p.coeffs().iter().rev().skip(1) {
+            shift += k;
+            acc = acc * n + (c.numer() << shift);
+        }
+    } else {
+        let mut dpow = num_bigint::BigInt::from(1);
+        for c in p.coeffs().iter().rev().skip(1) {
+            dpow *= d;
+            acc = acc * n + c.numer() * &dpow;
+        }
     }
     if acc.is_zero() {
         0
