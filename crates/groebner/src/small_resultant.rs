@@ -78,11 +78,10 @@ pub(crate) fn small_bezout_resultant<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) ->
     let mut m: [[Coeffs<T, 7>; 3]; 3] = std::array::from_fn(|_| std::array::from_fn(|_| zeros()));
     for (i, row) in m.iter_mut().enumerate().take(n) {
         for (j, entry) in row.iter_mut().enumerate().take(n) {
-            for q in 0..=i.min(j) {
-                let p = i + j + 1 - q;
-                if p <= n {
-                    add_assign(entry, &d[p][q]);
-                }
+            // q = i + j + 1 − p ≤ min(i, j)  ⇔  p ≥ max(i, j) + 1; and p ≤ N.
+            let last = n.min(i + j + 1);
+            for (p, dp) in d.iter().enumerate().take(last + 1).skip(i.max(j) + 1) {
+                add_assign(entry, &dp[i + j + 1 - p]);
             }
         }
     }
