@@ -81,8 +81,10 @@ pub(crate) fn buchberger_tracked<T: SolveScalar>(
     for t in &mut input {
         t.make_monic();
     }
-    if input.iter().any(is_unit) {
-        return Ok(vec![unit()]);
+    // A unit is returned as computed (not as a fresh exact 1), so that its error bounds
+    // survive for the f64 certification in `solve`.
+    if let Some(k) = input.iter().position(is_unit) {
+        return Ok(vec![input.swap_remove(k)]);
     }
     // all: every element ever added (pairs refer to indices); active: the reducer set.
     let mut all: Vec<Tracked<T>> = Vec::new();
@@ -105,7 +107,7 @@ pub(crate) fn buchberger_tracked<T: SolveScalar>(
         }
         h.make_monic();
         if is_unit(&h) {
-            return Ok(vec![unit()]);
+            return Ok(vec![h]);
         }
         if all.len() >= BUCHBERGER_MAX_BASIS {
             return Err(Error::LimitExceeded {
@@ -167,10 +169,6 @@ fn is_unit<T: SolveScalar>(t: &Tracked<T>) -> bool {
     t.poly.is_constant() && !t.is_zero()
 }
 
-fn unit<T: SolveScalar>() -> Tracked<T> {
-    Tracked::new(BiPoly::constant(T::one()))
-}
-
 /// The reduced form of a Gröbner basis: monic, no leading monomial divisible by another, no
 /// term of any element divisible by another element's leading monomial; sorted by leading
 /// monomial, largest first. A reduced Gröbner basis is unique for its ideal and order, so two
@@ -185,7 +183,12 @@ pub fn reduce_basis<T: SolveScalar>(basis: &[BiPoly<T>]) -> Vec<BiPoly<T>> {
     reduce_tracked(track_all(basis))
 }
 
-pub(crate) fn reduce_tracked<T: SolveScalar>(mut g: Vec<Tracked<T>>) -> Vec<BiPoly<T>> {
+pub(crate) fn reduce_tracked<T: SolveScalar>(g: Vec<Tracked<T>>) -> Vec<BiPoly<T>> {
+    reduce_tracked_keep(g).into_iter().map(|t| t.poly).collect()
+}
+
+/// As [`reduce_tracked`], keeping the error bounds (sorted largest `LM` first).
+pub(crate) fn reduce_tracked_keep<T: SolveScalar>(mut g: Vec<Tracked<T>>) -> Vec<Tracked<T>> {
     g.retain(|t| !t.is_zero());
     for t in &mut g {
         t.make_monic();
@@ -223,9 +226,8 @@ pub(crate) fn reduce_tracked<T: SolveScalar>(mut g: Vec<Tracked<T>>) -> Vec<BiPo
         t.make_monic();
         min[i] = t;
     }
-    let mut out: Vec<BiPoly<T>> = min.into_iter().map(|t| t.poly).collect();
-    out.sort_by_key(|p| std::cmp::Reverse(p.leading_monomial()));
-    out
+    min.sort_by_key(|t| std::cmp::Reverse(t.lm()));
+    min
 }
 
 /// True when `basis` is a Gröbner basis of the ideal it generates (Buchberger's criterion:

@@ -22,7 +22,9 @@
 //! error cannot certify it is non-zero (relative to the whole computation that formed it, not
 //! a fixed constant such as Stam's `1e-9`; details in the `tracked` module docs and
 //! `paper-notes/groebner.md` §5). `f64` Gröbner elimination is nevertheless unstable beyond
-//! eliminant degree ~6, which is why [`Method::BezoutResultant`] is the default method.
+//! eliminant degree ~6: [`solve`] uses an `f64` basis only where its error bounds certify it
+//! and otherwise falls back to the resultant ([`Method`]), and [`Method::BezoutResultant`] is
+//! the default method.
 //!
 //! # Examples
 //! ```

@@ -6,11 +6,11 @@
 use poly::{BiPoly, Poly, Scalar};
 
 use crate::basis::Basis;
-use crate::buchberger::{buchberger_tracked, reduce_tracked};
+use crate::buchberger::{buchberger_tracked, reduce_tracked_keep};
 use crate::error::Error;
 use crate::resultant::{bezout_resultant_v, sylvester_resultant_v};
 use crate::roots::SolveScalar;
-use crate::stam::stam_tracked;
+use crate::stam::{stam_tracked, stam_tracked_until};
 use crate::tracked::Tracked;
 
 /// Default [`SolveOptions::x_tol`]: roots are located to `1e-10` in `u` and `v` (a Bézier
@@ -66,13 +66,17 @@ const NEWTON_MAX_STEP_REL: f64 = 1e-3;
 /// How `v` is eliminated.
 ///
 /// All four are exact over `Rat`. Over `f64` they differ sharply: Gröbner elimination is a
-/// long chain of cancellations (a polynomial remainder sequence in `u`), and on planted-root
-/// systems (the crate's property tests) it found every root while the eliminant had degree
-/// ≤ 6 but only about half at degree 10–11 and almost none at degree 17, whatever the zero rule —
-/// the instability Stam reports (article §5). The resultants are determinants of matrices of
-/// low-degree coefficients and found every planted root up to degree 17 in the same runs.
-/// Hence the default, [`Method::BezoutResultant`]; use the Gröbner methods in `f64` only for
-/// low-degree systems, or in exact mode.
+/// long chain of cancellations (a polynomial remainder sequence in `u`) that round-off turns
+/// into noise beyond eliminant degree ~6 — the instability Stam reports (article §5). So over
+/// `f64` the Gröbner methods keep, for every basis element, a bound on its distance to the
+/// ideal (the `tracked` module), and use the basis only where that bound *certifies* it: a
+/// constant larger than its bound (no root in the box), or an eliminant whose near-zero set
+/// `{u : |ê(u)| ≤ bound}` is a few narrow intervals, each searched from its midpoint with `v`
+/// from `F1`, `F2`. Otherwise they solve the Bézout resultant instead
+/// ([`SolveStats::fallback`]). Measured on the teapot (`paper-notes/groebner.md` §5) the
+/// certificate holds on ~10% of the ray/piece systems; the result always matches the
+/// resultant's. The resultants are determinants of matrices of low-degree coefficients and
+/// stay accurate to degree 18. Hence the default, [`Method::BezoutResultant`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum Method {
@@ -138,7 +142,9 @@ pub struct Root {
 #[non_exhaustive]
 pub enum Verdict {
     /// No common root at all, real or complex (`1 ∈ G`, Theorem 1; or a non-zero constant
-    /// resultant): the ray misses.
+    /// resultant): the ray misses. From an `f64` Gröbner basis: a constant element certified
+    /// larger than its error bound over the box, which proves only that no common root lies in
+    /// the box (see [`Method`]).
     NoCommonRoot,
     /// Finitely many common roots; the real ones in the box are in [`Solution::roots`].
     Finite,
@@ -165,6 +171,9 @@ pub struct SolveStats {
     pub u_roots: usize,
     /// `(u, v)` candidates rejected by the residual test (extraneous factors, complex `v`).
     pub rejected: usize,
+    /// `f64` Gröbner methods only: the basis could not be certified (see [`Method`]) and the
+    /// Bézout resultant was solved instead; `u_degree` is then the resultant's.
+    pub fallback: bool,
 }
 
 /// The outcome of [`solve`].
@@ -247,13 +256,17 @@ pub fn solve<T: SolveScalar>(
         }
     }
     let mut stats = SolveStats::default();
+    let widen = |r: [f64; 2]| [r[0] - opts.x_tol, r[1] + opts.x_tol];
+    let (ub, vb) = (widen(opts.u_range), widen(opts.v_range));
     let elim = match opts.method {
-        Method::Stam | Method::Buchberger => eliminate_groebner(f1, f2, opts.method, &mut stats)?,
+        Method::Stam | Method::Buchberger => {
+            eliminate_groebner(f1, f2, opts.method, [ub, vb], opts.x_tol, &mut stats)?
+        }
         Method::Resultant | Method::BezoutResultant => {
             eliminate_resultant(f1, f2, opts.method, &mut stats)?
         }
     };
-    let (eliminant, v_sources, originals) = match elim {
+    let (eliminant, v_sources, originals, u_candidates) = match elim {
         Elimination::Verdict(verdict) => {
             return Ok(Solution {
                 roots: Vec::new(),
@@ -265,15 +278,20 @@ pub fn solve<T: SolveScalar>(
             eliminant,
             v_sources,
             originals,
-        } => (eliminant, v_sources, originals),
+            u_candidates,
+        } => (eliminant, v_sources, originals, u_candidates),
     };
     stats.u_degree = eliminant.degree();
-    let widen = |r: [f64; 2]| [r[0] - opts.x_tol, r[1] + opts.x_tol];
-    let (ub, vb) = (widen(opts.u_range), widen(opts.v_range));
-    let mut u_roots = T::real_roots_in(&eliminant, ub, opts.x_tol);
-    if !T::EXACT {
-        near_double_roots(&eliminant, ub, opts.x_tol, &mut u_roots);
-    }
+    let u_roots = match u_candidates {
+        Some(c) => c,
+        None => {
+            let mut u_roots = T::real_roots_in(&eliminant, ub, opts.x_tol);
+            if !T::EXACT {
+                near_double_roots(&eliminant, ub, opts.x_tol, &mut u_roots);
+            }
+            u_roots
+        }
+    };
     stats.u_roots = u_roots.len();
 
     let system = [f1.map(Scalar::nearest_f64), f2.map(Scalar::nearest_f64)];
@@ -360,6 +378,8 @@ enum Elimination<T> {
         v_sources: Vec<BiPoly<T>>,
         /// How many of the last `v_sources` are the input polynomials themselves.
         originals: usize,
+        /// Certified `u`-candidates replacing the eliminant's roots (`f64` Gröbner path).
+        u_candidates: Option<Vec<f64>>,
     },
 }
 
@@ -367,25 +387,31 @@ fn eliminate_groebner<T: SolveScalar>(
     f1: &BiPoly<T>,
     f2: &BiPoly<T>,
     method: Method,
+    boxes: [[f64; 2]; 2],
+    x_tol: f64,
     stats: &mut SolveStats,
 ) -> Result<Elimination<T>, Error> {
     let (t1, t2) = (Tracked::new(f1.clone()), Tracked::new(f2.clone()));
-    let mut basis = match method {
-        Method::Stam => Basis::new(stam_tracked(t1, t2)?.into_iter().map(|t| t.poly).collect()),
-        _ => Basis::new(reduce_tracked(buchberger_tracked(vec![t1, t2])?)),
+    if !T::EXACT {
+        return eliminate_groebner_f64(f1, f2, method, boxes, x_tol, stats);
+    }
+    let mut tracked = match method {
+        Method::Stam => stam_tracked(t1, t2)?,
+        _ => reduce_tracked_keep(buchberger_tracked(vec![t1, t2])?),
     };
+    let as_basis = |t: &[Tracked<T>]| Basis::new(t.iter().map(|t| t.poly.clone()).collect());
+    let mut basis = as_basis(&tracked);
     if !basis.contains_unit() && basis.univariate_u().is_none() {
         // Stam's loop is not proven to give a Gröbner basis: complete it before concluding
-        // that the roots are not finite (Theorem 3 needs a Gröbner basis).
-        let tracked = basis
-            .elements()
-            .iter()
-            .map(|g| Tracked::new(g.clone()))
-            .collect();
-        basis = Basis::new(reduce_tracked(buchberger_tracked(tracked)?));
+        // that the roots are not finite (Theorem 3 needs a Gröbner basis). The error bounds
+        // are carried over.
+        tracked.retain(|t| !t.is_zero());
+        tracked = reduce_tracked_keep(buchberger_tracked(tracked)?);
+        basis = as_basis(&tracked);
     }
     stats.basis_size = basis.len();
     stats.coeff_bits = basis.elements().iter().filter_map(T::coeff_bits).max();
+    stats.v_degree = basis.v_elements().first().map_or(0, |g| g.deg_v());
     if basis.contains_unit() {
         return Ok(Elimination::Verdict(Verdict::NoCommonRoot));
     }
@@ -396,14 +422,192 @@ fn eliminate_groebner<T: SolveScalar>(
         return Ok(Elimination::Verdict(Verdict::Infinite));
     }
     let mut v_sources: Vec<BiPoly<T>> = basis.v_elements().into_iter().cloned().collect();
-    stats.v_degree = v_sources.first().map_or(0, BiPoly::deg_v);
     v_sources.push(f1.clone());
     v_sources.push(f2.clone());
     Ok(Elimination::Eliminant {
         eliminant,
         v_sources,
         originals: 2,
+        u_candidates: None,
     })
+}
+
+/// The `f64` Gröbner path: the basis, then [`certify_f64`]. A Stam run is abandoned as soon as
+/// a new element is pure noise on the box ([`Tracked::is_noise`]), and a run that exceeds its
+/// limits falls back like an uncertified one (neither says anything about the roots).
+fn eliminate_groebner_f64<T: SolveScalar>(
+    f1: &BiPoly<T>,
+    f2: &BiPoly<T>,
+    method: Method,
+    boxes: [[f64; 2]; 2],
+    x_tol: f64,
+    stats: &mut SolveStats,
+) -> Result<Elimination<T>, Error> {
+    let [ub, vb] = boxes;
+    let um = T::from_f64(ub[0].abs().max(ub[1].abs())).expect("finite");
+    let vm = T::from_f64(vb[0].abs().max(vb[1].abs())).expect("finite");
+    let (t1, t2) = (Tracked::new(f1.clone()), Tracked::new(f2.clone()));
+    let run = match method {
+        Method::Stam => stam_tracked_until(t1, t2, |t| t.is_noise(&um, &vm)),
+        _ => buchberger_tracked(vec![t1, t2]).map(|g| Some(reduce_tracked_keep(g))),
+    };
+    let mut tracked = match run {
+        Ok(Some(g)) => g,
+        Ok(None) | Err(Error::LimitExceeded { .. }) => return fallback(f1, f2, stats),
+        Err(e) => return Err(e),
+    };
+    let mut basis = Basis::new(tracked.iter().map(|t| t.poly.clone()).collect());
+    if !basis.contains_unit() && basis.univariate_u().is_none() {
+        // As in exact mode, complete Stam's list before giving up on it.
+        tracked.retain(|t| !t.is_zero());
+        tracked = match buchberger_tracked(tracked) {
+            Ok(g) => reduce_tracked_keep(g),
+            Err(Error::LimitExceeded { .. }) => return fallback(f1, f2, stats),
+            Err(e) => return Err(e),
+        };
+        basis = Basis::new(tracked.iter().map(|t| t.poly.clone()).collect());
+    }
+    stats.basis_size = basis.len();
+    stats.v_degree = basis.v_elements().first().map_or(0, |g| g.deg_v());
+    certify_f64(f1, f2, &tracked, &basis, boxes, x_tol, stats)
+}
+
+/// The Bézout resultant in place of an uncertified `f64` Gröbner basis.
+fn fallback<T: SolveScalar>(
+    f1: &BiPoly<T>,
+    f2: &BiPoly<T>,
+    stats: &mut SolveStats,
+) -> Result<Elimination<T>, Error> {
+    stats.fallback = true;
+    eliminate_resultant(f1, f2, Method::BezoutResultant, stats)
+}
+
+/// `f64` Gröbner elimination, accepted only where it is certified (see `paper-notes/groebner.md`
+/// §5): each basis element `ĝ` carries a bound `Ē` on its distance to the ideal
+/// ([`Tracked::ideal_distance_at`]), so at every common root in the box `|ĝ(u_r)| ≤ Ē`.
+///
+/// * A constant element `c` with `|c| > Ē` certifies that no common root lies in the box.
+/// * A univariate element `ê` certifies that every common root's `u` lies in
+///   `Z = {u : |ê(u)| ≤ Ē}`. The components of `Z` are delimited by the real roots of `ê ∓ Ē`
+///   (certified isolation by `poly`); if each is narrower than [`CERT_WIDTH_REL`] of the box,
+///   its midpoint is a `u`-candidate from which the polish on `F1`, `F2` reaches any root in it.
+///
+/// Otherwise (a wide component, no univariate element, or a constant below its bound) the
+/// `f64` basis says nothing reliable and the Bézout resultant of the same system is used
+/// instead ([`SolveStats::fallback`]). `v` is taken from `F1`, `F2` themselves: the `f64`
+/// basis elements involving `v` are not trusted.
+fn certify_f64<T: SolveScalar>(
+    f1: &BiPoly<T>,
+    f2: &BiPoly<T>,
+    tracked: &[Tracked<T>],
+    basis: &Basis<T>,
+    boxes: [[f64; 2]; 2],
+    x_tol: f64,
+    stats: &mut SolveStats,
+) -> Result<Elimination<T>, Error> {
+    let [ub, vb] = boxes;
+    let u_max = ub[0].abs().max(ub[1].abs());
+    let v_max = vb[0].abs().max(vb[1].abs());
+    let bound_of = |t: &Tracked<T>| {
+        let (um, vm) = (
+            T::from_f64(u_max).expect("finite"),
+            T::from_f64(v_max).expect("finite"),
+        );
+        // The ideal distance, plus the rounding of evaluating ĝ itself (γ(2n) of its terms),
+        // times 2 for the neglected second-order terms.
+        let n = t.poly.stride() + t.poly.rows();
+        let eval = poly::gamma(2 * n) * t.poly.map(Scalar::nearest_f64).eval_abs(u_max, v_max);
+        2.0 * (t.ideal_distance_at(&um, &vm).nearest_f64() + eval)
+    };
+    let certified = |stats: &mut SolveStats| -> Option<Elimination<T>> {
+        if let Some(t) = tracked
+            .iter()
+            .find(|t| t.poly.is_constant() && !t.is_zero())
+        {
+            let c = t.poly.coeff(0, 0).nearest_f64().abs();
+            return (c > bound_of(t)).then_some(Elimination::Verdict(Verdict::NoCommonRoot));
+        }
+        let (k, _) = basis.univariate_u()?;
+        let t = tracked.iter().filter(|t| !t.is_zero()).nth(k)?;
+        let e: Poly<f64> = Poly::new(
+            t.poly
+                .to_poly_u()?
+                .coeffs()
+                .iter()
+                .map(Scalar::nearest_f64)
+                .collect(),
+        );
+        let bound = bound_of(t);
+        let candidates = certified_candidates(&e, bound, ub, x_tol)?;
+        stats.u_degree = e.degree();
+        let mut v_sources = vec![f1.clone(), f2.clone()];
+        v_sources.retain(|g| g.deg_v() > 0);
+        v_sources.sort_by_key(BiPoly::deg_v);
+        let originals = v_sources.len();
+        Some(Elimination::Eliminant {
+            eliminant: t.poly.to_poly_u()?,
+            v_sources,
+            originals,
+            u_candidates: Some(candidates),
+        })
+    };
+    if let Some(elim) = certified(stats) {
+        return Ok(elim);
+    }
+    fallback(f1, f2, stats)
+}
+
+/// Largest width of a component of `{u : |ê(u)| ≤ Ē}` accepted by [`certify_f64`], relative to
+/// the `u`-range: `1e-6`. A component this narrow is covered by its midpoint (Newton on `F1`,
+/// `F2` converges from within 5e-7 of the box in one or two steps, far inside
+/// `NEWTON_MAX_STEP_REL`); a wider one means the `f64` eliminant has lost the roots' positions.
+const CERT_WIDTH_REL: f64 = 1e-6;
+
+/// The midpoints of the components of `{u ∈ ub : |e(u)| ≤ bound}`, or `None` if one is wider
+/// than [`CERT_WIDTH_REL`] of `ub`.
+fn certified_candidates(e: &Poly<f64>, bound: f64, ub: [f64; 2], x_tol: f64) -> Option<Vec<f64>> {
+    if !bound.is_finite() {
+        return None;
+    }
+    let max_width = CERT_WIDTH_REL * (ub[1] - ub[0]).max(x_tol);
+    let mut cuts = vec![ub[0], ub[1]];
+    for shift in [-bound, bound] {
+        let mut c = e.coeffs().to_vec();
+        c[0] += shift;
+        cuts.extend(f64::real_roots_in(&Poly::new(c), ub, x_tol));
+    }
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup();
+    let inside = |x: f64| e.eval(&x).abs() <= bound;
+    // Components: maximal runs of sub-intervals [cuts[k], cuts[k+1]] whose midpoint is in Z;
+    // a cut is itself on the boundary of Z (|e| = bound there, up to x_tol).
+    let mut out = Vec::new();
+    let mut start: Option<f64> = None;
+    let close = |a: f64, b: f64, out: &mut Vec<f64>| -> Option<()> {
+        if b - a > max_width + 2.0 * x_tol {
+            return None;
+        }
+        out.push(0.5 * (a + b));
+        Some(())
+    };
+    for w in cuts.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        if inside(0.5 * (a + b)) {
+            start.get_or_insert(a);
+        } else if let Some(s) = start.take() {
+            close(s, a, &mut out)?;
+        } else if a > ub[0] {
+            // An isolated boundary point (Z touches it from no side at this resolution).
+            close(a, a, &mut out)?;
+        }
+    }
+    if let Some(s) = start {
+        close(s, ub[1], &mut out)?;
+    } else if inside(ub[1]) {
+        close(ub[1], ub[1], &mut out)?;
+    }
+    out.dedup_by(|b, a| (*b - *a).abs() <= 4.0 * x_tol);
+    Some(out)
 }
 
 /// Whether a basis that lacks Theorem 2's `v^J` leading monomial can be trusted to say
@@ -453,6 +657,7 @@ fn eliminate_resultant<T: SolveScalar>(
             eliminant,
             v_sources: vec![other.clone()],
             originals: 1,
+            u_candidates: None,
         });
     }
     let res = match method {
@@ -479,6 +684,7 @@ fn eliminate_resultant<T: SolveScalar>(
         eliminant: res,
         v_sources,
         originals,
+        u_candidates: None,
     })
 }
 
@@ -841,6 +1047,115 @@ mod tests {
                 "{m:?}: the basis element's v verified at both roots: {:?}",
                 sol.stats
             );
+        }
+    }
+
+    /// Two teapot ray/piece systems (power-basis points about the piece's centre, ray origin,
+    /// direction; from `tests/bezier_teapot.rs`' view): patch 22 on [0, ¼]² (4×4 pieces,
+    /// the lead's reproducer) and patch 20 piece of a 16×16 cut.
+    const TEAPOT_CASES: [([[f64; 3]; 16], [f64; 3], [f64; 3]); 2] = [
+        (
+            [
+                [
+                    0.17031250000000003,
+                    -0.06702563476562502,
+                    0.024609375000000266,
+                ],
+                [-0.6000000000000001, 0.0, 0.0],
+                [0.30000000000000004, 0.0, -0.056250000000000355],
+                [-0.04062500000000002, 0.0, 0.007031249999999822],
+                [0.0, 0.0, 0.0],
+                [0.0, 0.253125, 0.0],
+                [0.0, -0.12656249999999997, 0.0],
+                [0.0, 0.01713281250000001, 0.0],
+                [0.0, 0.0, 0.0],
+                [0.049218749999999645, -0.014062499999999922, 0.0],
+                [-0.024609374999999822, 0.007031249999999933, 0.0],
+                [0.0033339843750000986, -0.0009492187500000915, 0.0],
+                [0.0, 0.0, 0.0],
+                [-0.002929687499999667, -0.0029296875, 0.0],
+                [0.001464843749999778, 0.00146484375, 0.0],
+                [-0.00019873046875018563, -0.00019873046874996358, 0.0],
+            ],
+            [
+                -0.017054880694892527,
+                -0.054353337878157285,
+                0.024609375000006484,
+            ],
+            [
+                -0.5559003198125779,
+                0.7831825859381882,
+                -0.27856753492725295,
+            ],
+        ),
+        (
+            [
+                [
+                    0.01878793287277221,
+                    -0.009158003747463173,
+                    0.01708374023437509,
+                ],
+                [
+                    -0.003928776741027817,
+                    0.018808367729187037,
+                    -0.03306884765624929,
+                ],
+                [
+                    -0.0011089353561401505,
+                    0.0053121843338010954,
+                    -0.0012084960937510658,
+                ],
+                [
+                    0.00012975406646728582,
+                    -0.0006221303939819012,
+                    0.00010986328125017764,
+                ],
+                [-0.0344373536109924, -0.006838804721832403, 0.0],
+                [0.0018957209587096013, 0.00037528181076096345, 0.0],
+                [0.000535175800323695, 0.00010609102249103941, 0.0],
+                [-6.263494491581811e-5, -1.2441158294573817e-5, 0.0],
+                [-0.0006701438426971462, 0.0016297352313998648, 0.0],
+                [3.72354984284895e-5, -8.946776390184041e-5, 0.0],
+                [1.0469198226725762e-5, -2.5287866590950614e-5, 0.0],
+                [-1.2180805206152279e-6, 2.96473503103023e-6, 0.0],
+                [2.6655316352840186e-5, 2.6655316352541814e-5, 0.0],
+                [-1.4508962630777056e-6, -1.4508962626891275e-6, 0.0],
+                [-4.1162967684416074e-7, -4.116296768996719e-7, 0.0],
+                [4.8518180868761807e-8, 4.8518181028356366e-8, 0.0],
+            ],
+            [
+                0.011661505398105468,
+                -0.014340417921548387,
+                0.001175481522686983,
+            ],
+            [
+                -0.5515909420098845,
+                0.7765592714968523,
+                -0.30447188793865104,
+            ],
+        ),
+    ];
+
+    #[test]
+    fn f64_groebner_keeps_teapot_roots() {
+        // Before the certificate: Stam over f64 returned no root on the first system (its f64
+        // eliminant, of degree 8 instead of 15, was noise), and a first version of the
+        // certificate declared a miss on the second (Buchberger's early stop on a constant
+        // dropped the error bounds). Both roots are those of the resultant (u ≈ 0.4499,
+        // v ≈ 0.4923 and u ≈ 0.6689, v ≈ 0.4875).
+        for (k, (points, o, d)) in TEAPOT_CASES.iter().enumerate() {
+            let sys = crate::ray_patch_system(points, 4, 4, o, d).unwrap();
+            let opts = |method| SolveOptions {
+                method,
+                ..SolveOptions::default()
+            };
+            let reference = solve(&sys.f1, &sys.f2, &opts(Method::BezoutResultant)).unwrap();
+            assert_eq!(reference.roots.len(), 1, "case {k}: {reference:?}");
+            for m in [Method::Stam, Method::Buchberger] {
+                let sol = solve(&sys.f1, &sys.f2, &opts(m)).unwrap();
+                let expected = [(reference.roots[0].u, reference.roots[0].v)];
+                assert_roots(&sol, &expected, 1e-9, &format!("case {k} {m:?}"));
+            }
         }
     }
 

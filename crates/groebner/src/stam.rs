@@ -79,6 +79,16 @@ pub(crate) fn stam_tracked<T: SolveScalar>(
     f1: Tracked<T>,
     f2: Tracked<T>,
 ) -> Result<Vec<Tracked<T>>, Error> {
+    stam_tracked_until(f1, f2, |_| false).map(|g| g.expect("never aborted"))
+}
+
+/// [`stam_tracked`] that gives up (`Ok(None)`) as soon as `abort` holds for a new element:
+/// the `f64` solver stops a run whose elements are already dominated by their error bounds.
+pub(crate) fn stam_tracked_until<T: SolveScalar>(
+    f1: Tracked<T>,
+    f2: Tracked<T>,
+    abort: impl Fn(&Tracked<T>) -> bool,
+) -> Result<Option<Vec<Tracked<T>>>, Error> {
     let (a, b) = r2_tracked(f1, f2);
     let mut g = vec![a, b];
     let mut i = 0;
@@ -103,11 +113,14 @@ pub(crate) fn stam_tracked<T: SolveScalar>(
         let gi1 = std::mem::replace(&mut g[i + 1], Tracked::zero());
         let (gi1, s) = r2_tracked(s, gi1);
         g[i + 1] = gi1;
+        if abort(&s) {
+            return Ok(None);
+        }
         g.push(s);
         i += 1;
     }
     g.retain(|t| !t.is_zero());
-    Ok(g)
+    Ok(Some(g))
 }
 
 #[cfg(test)]

@@ -1,29 +1,43 @@
-//! [`Tracked`]: a polynomial under reduction together with a running bound on the round-off
-//! error of each of its coefficients, so that `f64` cancellation is recognised relative to the
-//! computation that produced it.
+//! [`Tracked`]: a polynomial under reduction together with a bound, per coefficient, on its
+//! distance to the ideal of the input polynomials, so that `f64` cancellation is recognised
+//! relative to the computation that produced it, and an `f64` basis element can be used as a
+//! certificate.
+//!
+//! # The ideal-distance bound (`f64`)
+//! Every step of the Gröbner algorithms (`p ← p − λ·x·q`, S-polynomials, division by a leading
+//! coefficient) maps elements of the ideal `(F1, F2)` to elements of the ideal *whatever the
+//! scalar `λ`*: a multiplier computed inaccurately is still a multiplier. So instead of the
+//! error with respect to the exact run of the same algorithm (which `f64` need not follow: one
+//! coefficient judged zero and the runs take different branches), each coefficient carries a
+//! first-order bound `d` on `|p̂_ij − p*_ij|` for *some* exact element `p*` of the ideal
+//! (running error analysis, Higham, *Accuracy and Stability of Numerical Algorithms*, §3.3):
+//!
+//! * input coefficients are exact: `d = 0`;
+//! * `p ← p − λ·x·q` (`x` a monomial) adds `|λ|·d_q + u·(|p_k| + 2|λ·q_k|)` to each touched
+//!   coefficient, `u = 2⁻⁵³` (one product and one subtraction);
+//! * dividing by the leading coefficient `lc` divides the bounds by `|lc|` and adds
+//!   `u·|c/lc|`;
+//! * setting a coefficient `c` to zero adds `|c|`.
 //!
 //! # The zero rule (`f64`)
 //! Stam treated `|x| < 1e-9` as zero (article §5, `ZERO()` in `ray3.c`), whatever the size of
-//! the polynomials. Here every coefficient `c` carries a first-order bound `e` on its absolute
-//! round-off error (running error analysis, Higham, *Accuracy and Stability of Numerical
-//! Algorithms*, §3.3), propagated through every operation since the input:
+//! the polynomials. Here a coefficient is set to exactly zero when `|c| ≤ ZERO_ERR_FACTOR · d`,
+//! i.e. when it is indistinguishable from the rounding that formed it (a factor 4 of slack for
+//! the neglected second-order terms). Leading coefficients obtained by cancellation are the
+//! critical case: a residue kept as a leading term would be divided by and would turn the whole
+//! polynomial into noise. The rule is scale-invariant; the monomial that a reduction step
+//! cancels is set to zero by construction.
 //!
-//! * input coefficients are taken as exact data: `e = 0`;
-//! * a scalar `λ` formed as `a / b` has error `|λ|·(e_a/|a| + e_b/|b| + u)`, `u = 2⁻⁵³`;
-//! * a step `p ← p − λ·x·q` (`x` a monomial) gives each touched coefficient
-//!   `e_p + |λ|·e_q + e_λ·|q_k| + u·(|p_k| + 2|λ·q_k|)` (one product and one subtraction);
-//! * dividing by the leading coefficient `lc` divides the bounds by `|lc|` and adds
-//!   `|c/lc|·(e_lc/|lc| + u)`.
+//! # The certificate
+//! At a common root `(u_r, v_r)` of the inputs every `p*` vanishes, so
+//! `|p̂(u_r, v_r)| ≤ Σ d_ij |u_r|^i |v_r|^j` ([`Tracked::ideal_distance_at`]): an `f64`
+//! eliminant larger than that bound at `u` proves that no root has this `u`, and a constant
+//! larger than its bound proves the ray misses (`solve.rs`, `certify_f64`). An earlier version
+//! also propagated the multipliers' own errors into a bound on the distance to the exact run
+//! (and zeroed against that); on the teapot view of `paper-notes/groebner.md` §5 it zeroed more
+//! coefficients and certified 1% of the systems, against 13% with this bound.
 //!
-//! A coefficient is set to exactly zero when `|c| ≤ ZERO_ERR_FACTOR · e`, that is when the
-//! bound cannot certify that it is non-zero (with a factor 4 of slack for the neglected
-//! second-order terms). Leading coefficients obtained by cancellation are the critical case:
-//! a residue kept as a leading term would be divided by and would turn the whole polynomial
-//! into noise. The rule is scale-invariant, follows cancellation through the whole
-//! computation, and also propagates the error of the multipliers (a quotient of two cancelled
-//! leading coefficients can be inaccurate in every digit). The monomial that a reduction step
-//! cancels is set to zero by construction. Over exact [`Rat`] there is no threshold and no
-//! bounds are kept.
+//! Over exact [`Rat`] there is no threshold and no bounds are kept.
 //!
 //! [`Rat`]: poly::Rat
 
@@ -32,16 +46,24 @@ use poly::{BiPoly, Monomial, Scalar};
 use crate::roots::SolveScalar;
 
 /// Slack factor of the zero rule (see the module docs): a coefficient is zero when
-/// `|c| ≤ ZERO_ERR_FACTOR · e`. The bound `e` is first-order; 4 covers the neglected
+/// `|c| ≤ ZERO_ERR_FACTOR · d`. The bound `d` is first-order; 4 covers the neglected
 /// second-order terms many times over while dropping nothing the bound would certify by more
 /// than two bits.
 pub(crate) const ZERO_ERR_FACTOR: f64 = 4.0;
 
+/// A new element of Stam's `f64` loop whose ideal-distance bound on the box reaches this
+/// fraction of the size of its terms ends the run early ([`Tracked::is_noise`]): the solver
+/// falls back to the resultant anyway in such runs, and the later rounds are the expensive
+/// ones. A speed heuristic only (correctness comes from the final certificate). Measured on
+/// the teapot view (`paper-notes/groebner.md` §5): with `1e-4` no run that would have been
+/// certified with hits was stopped, and the `f64` Stam solve took ~40% less time than with `1`.
+pub(crate) const NOISE_ABORT_REL: f64 = 1e-4;
+
 /// Unit round-off of `f64`, `2⁻⁵³`.
 const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0;
 
-/// A dense grid of error bounds indexed like a [`BiPoly`] (`i` power of `u`, `j` of `v`),
-/// growing on demand; entries outside are zero.
+/// A dense grid of bounds indexed like a [`BiPoly`] (`i` power of `u`, `j` of `v`), growing on
+/// demand; entries outside are zero.
 #[derive(Clone, Debug)]
 struct ErrGrid<T> {
     stride: usize,
@@ -56,6 +78,10 @@ impl<T: Scalar> ErrGrid<T> {
         }
     }
 
+    fn rows(&self) -> usize {
+        self.data.len().checked_div(self.stride).unwrap_or(0)
+    }
+
     fn get(&self, i: usize, j: usize) -> T {
         if i >= self.stride {
             return T::zero();
@@ -68,7 +94,7 @@ impl<T: Scalar> ErrGrid<T> {
 
     /// Makes room for `u^i v^j` with `i < stride`, `j < rows`.
     fn ensure(&mut self, stride: usize, rows: usize) {
-        let cur_rows = self.data.len().checked_div(self.stride).unwrap_or(0);
+        let cur_rows = self.rows();
         if stride <= self.stride && rows <= cur_rows {
             return;
         }
@@ -87,12 +113,6 @@ impl<T: Scalar> ErrGrid<T> {
         self.data[k] = self.data[k].clone() + x;
     }
 
-    fn set(&mut self, i: usize, j: usize, x: T) {
-        self.ensure(i + 1, j + 1);
-        let k = j * self.stride + i;
-        self.data[k] = x;
-    }
-
     fn scale(&mut self, c: &T) {
         for e in &mut self.data {
             *e = e.clone() * c;
@@ -100,7 +120,7 @@ impl<T: Scalar> ErrGrid<T> {
     }
 
     fn shifted(&self, m: Monomial, c: &T) -> Self {
-        let rows = self.data.len().checked_div(self.stride).unwrap_or(0);
+        let rows = self.rows();
         let mut out = ErrGrid::empty();
         if rows == 0 {
             return out;
@@ -115,21 +135,21 @@ impl<T: Scalar> ErrGrid<T> {
     }
 }
 
-/// A polynomial and, for inexact scalars, its error bounds (see the module docs).
+/// A polynomial and, for inexact scalars, its ideal-distance bounds (see the module docs).
 #[derive(Clone, Debug)]
 pub(crate) struct Tracked<T> {
     /// The polynomial.
     pub(crate) poly: BiPoly<T>,
-    /// Running error bounds; empty for exact scalars.
-    err: ErrGrid<T>,
+    /// Ideal-distance bounds; empty for exact scalars and for exact inputs.
+    dist: ErrGrid<T>,
 }
 
 impl<T: SolveScalar> Tracked<T> {
-    /// An input polynomial: its coefficients are exact data (error bound 0).
+    /// An input polynomial: its coefficients are exact data (bound 0).
     pub(crate) fn new(poly: BiPoly<T>) -> Self {
         Tracked {
             poly,
-            err: ErrGrid::empty(),
+            dist: ErrGrid::empty(),
         }
     }
 
@@ -151,75 +171,47 @@ impl<T: SolveScalar> Tracked<T> {
         self.poly.leading_coeff().cloned().unwrap_or_else(T::zero)
     }
 
-    /// The relative error bound `e/|c|` of the coefficient at `m` (0 for exact scalars).
-    fn rel_err_at(&self, m: Monomial) -> T {
-        if T::EXACT {
-            return T::zero();
-        }
-        let c = self.poly.coeff(m.u, m.v).abs();
-        if c.is_zero() {
-            return T::zero();
-        }
-        self.err.get(m.u, m.v) / c
-    }
-
-    /// `a / b` and its absolute error bound, given the relative error bounds of `a` and `b`.
-    fn quotient(a: T, rel_a: T, b: &T, rel_b: T) -> (T, T) {
-        let q = a / b;
-        if T::EXACT {
-            return (q, T::zero());
-        }
-        let e = q.abs() * (rel_a + rel_b + unit_roundoff::<T>());
-        (q, e)
-    }
-
-    /// `(c ± e_c) · x · self`.
-    fn mul_term(&self, c: &T, c_err: &T, x: Monomial) -> Self {
+    /// `c · x · self` (rounding of the products added to the bounds).
+    fn mul_term(&self, c: &T, x: Monomial) -> Self {
         let poly = self.poly.mul_term(c, x);
         if T::EXACT {
             return Tracked::new(poly);
         }
-        // e = |c|·e_self + e_c·|self| + u·|c·self|.
-        let mut err = self.err.shifted(x, &c.abs());
-        err.ensure(self.poly.stride() + x.u, self.poly.rows() + x.v);
+        let mut dist = self.dist.shifted(x, &c.abs());
+        dist.ensure(self.poly.stride() + x.u, self.poly.rows() + x.v);
         let u = unit_roundoff::<T>();
         for (m, a) in self.poly.terms() {
-            let a = a.abs();
-            err.add(
-                m.u + x.u,
-                m.v + x.v,
-                c_err.clone() * &a + u.clone() * c.abs() * &a,
-            );
+            dist.add(m.u + x.u, m.v + x.v, u.clone() * c.abs() * a.abs());
         }
-        Tracked { poly, err }
+        Tracked { poly, dist }
     }
 
-    /// `self ← self − (c ± e_c)·x·q`, the term at `cancels` being zero by construction; then
-    /// the zero rule.
-    fn sub_term(&mut self, c: &T, c_err: &T, x: Monomial, q: &Tracked<T>, cancels: Monomial) {
+    /// `self ← self − c·x·q`, the term at `cancels` being zero by construction; then the zero
+    /// rule.
+    fn sub_term(&mut self, c: &T, x: Monomial, q: &Tracked<T>, cancels: Monomial) {
         if !T::EXACT {
-            // e_k += |c|·e_q + e_c·|q_k| + u·(|p_k| + 2|c·q_k|), with the old p_k.
-            self.err.ensure(
-                self.poly.stride().max(q.poly.stride() + x.u),
-                self.poly.rows().max(q.poly.rows() + x.v),
+            // d_k += |c|·d_q + u·(|p_k| + 2|c·q_k|), with the old p_k.
+            let rows = q.poly.rows().max(q.dist.rows());
+            let stride = q.poly.stride().max(q.dist.stride);
+            self.dist.ensure(
+                self.poly.stride().max(stride + x.u),
+                self.poly.rows().max(rows + x.v),
             );
             let (ac, u) = (c.abs(), unit_roundoff::<T>());
             let two = T::one() + T::one();
-            let q_rows = q.poly.rows();
-            let q_err_rows = q.err.data.len().checked_div(q.err.stride).unwrap_or(0);
-            for j in 0..q_rows.max(q_err_rows) {
-                for i in 0..q.poly.stride().max(q.err.stride) {
+            let ds = self.dist.stride;
+            for j in 0..rows {
+                for i in 0..stride {
                     let qk = q.poly.coeff(i, j).abs();
-                    let eq = q.err.get(i, j);
-                    if qk.is_zero() && eq.is_zero() {
+                    let dq = q.dist.get(i, j);
+                    if qk.is_zero() && dq.is_zero() {
                         continue;
                     }
                     let (ti, tj) = (i + x.u, j + x.v);
                     let pk = self.poly.coeff(ti, tj).abs();
-                    let e = ac.clone() * eq
-                        + c_err.clone() * &qk
-                        + u.clone() * (pk + two.clone() * &ac * qk);
-                    self.err.add(ti, tj, e);
+                    let add = ac.clone() * dq + u.clone() * (pk + two.clone() * &ac * qk);
+                    let slot = &mut self.dist.data[tj * ds + ti];
+                    *slot = slot.clone() + add;
                 }
             }
         }
@@ -227,10 +219,15 @@ impl<T: SolveScalar> Tracked<T> {
         if T::EXACT {
             return;
         }
-        let err = &self.err;
+        let dist = &mut self.dist;
         let factor = T::from_f64(ZERO_ERR_FACTOR).expect("a small constant");
         self.poly.zero_where(|i, j, c| {
-            cancels == Monomial::new(i, j) || c.abs() <= factor.clone() * err.get(i, j)
+            let zero = cancels == Monomial::new(i, j) || c.abs() <= factor.clone() * dist.get(i, j);
+            if zero {
+                // Dropping a term moves the polynomial away from the ideal by |c|.
+                dist.add(i, j, c.abs());
+            }
+            zero
         });
     }
 
@@ -239,13 +236,8 @@ impl<T: SolveScalar> Tracked<T> {
     pub(crate) fn cancel_with(&mut self, t: Monomial, q: &Tracked<T>) {
         let lq = q.lm().expect("a reducer is non-zero");
         let x = lq.quotient_of(t).expect("LM(q) divides t");
-        let (c, c_err) = Self::quotient(
-            self.poly.coeff(t.u, t.v),
-            self.rel_err_at(t),
-            &q.lc(),
-            q.rel_err_at(lq),
-        );
-        self.sub_term(&c, &c_err, x, q, t);
+        let c = self.poly.coeff(t.u, t.v) / q.lc();
+        self.sub_term(&c, x, q, t);
     }
 
     /// The S-polynomial `(L/LM(f))·f/lc(f) − (L/LM(g))·g/lc(g)` (article §3 def. 6).
@@ -254,37 +246,60 @@ impl<T: SolveScalar> Tracked<T> {
             return Tracked::zero();
         };
         let l = lf.lcm(lg);
-        let (cf, ef) = Self::quotient(T::one(), T::zero(), &f.lc(), f.rel_err_at(lf));
-        let (cg, eg) = Self::quotient(T::one(), T::zero(), &g.lc(), g.rel_err_at(lg));
-        let mut s = f.mul_term(&cf, &ef, lf.quotient_of(l).expect("LM(f) | lcm"));
-        s.sub_term(&cg, &eg, lg.quotient_of(l).expect("LM(g) | lcm"), g, l);
+        let cf = T::one() / f.lc();
+        let cg = T::one() / g.lc();
+        let mut s = f.mul_term(&cf, lf.quotient_of(l).expect("LM(f) | lcm"));
+        s.sub_term(&cg, lg.quotient_of(l).expect("LM(g) | lcm"), g, l);
         s
     }
 
     /// Divides by the leading coefficient (Stam's `Scale`); the leading term becomes exactly 1.
     pub(crate) fn make_monic(&mut self) {
-        if T::EXACT {
-            self.poly.make_monic_in_place();
-            return;
-        }
-        let Some(lm) = self.lm() else {
-            return;
-        };
-        let rel_lc = self.rel_err_at(lm);
         let Some(lc) = self.poly.make_monic_in_place() else {
             return;
         };
         if T::EXACT {
             return;
         }
-        // e ← e/|lc| + |c/lc|·(e_lc/|lc| + u); the new leading 1 is exact.
-        let inv = T::one() / lc.abs();
-        self.err.scale(&inv);
-        let r = rel_lc + unit_roundoff::<T>();
+        // d ← d/|lc| + u·|c/lc| (p*/lc is in the ideal for any lc).
+        self.dist.scale(&(T::one() / lc.abs()));
+        let u = unit_roundoff::<T>();
         for (m, c) in self.poly.terms() {
-            self.err.add(m.u, m.v, c.abs() * &r);
+            self.dist.add(m.u, m.v, u.clone() * c.abs());
         }
-        self.err.set(lm.u, lm.v, T::zero());
+    }
+
+    /// Bound on the distance from this polynomial to the ideal of the inputs, at the corner
+    /// `(u_max, v_max)`: `Σ d_ij u_max^i v_max^j`. For some exact element `p*` of the ideal,
+    /// `|p̂(u, v) − p*(u, v)|` is at most this for all `|u| ≤ u_max`, `|v| ≤ v_max`; hence at a
+    /// common root of the inputs in that box, `|p̂(u_r, v_r)|` is at most this (module docs).
+    /// First order in the unit round-off. Zero for exact scalars.
+    pub(crate) fn ideal_distance_at(&self, u_max: &T, v_max: &T) -> T {
+        let mut total = T::zero();
+        for j in (0..self.dist.rows()).rev() {
+            let mut row = T::zero();
+            for i in (0..self.dist.stride).rev() {
+                row = row * u_max + self.dist.get(i, j);
+            }
+            total = total * v_max + row;
+        }
+        total
+    }
+
+    /// Whether the ideal-distance bound at `(u_max, v_max)` reaches [`NOISE_ABORT_REL`] of the
+    /// size of the polynomial's terms there (`Σ|c_ij| u_max^i v_max^j`). False for exact
+    /// scalars.
+    pub(crate) fn is_noise(&self, u_max: &T, v_max: &T) -> bool {
+        if T::EXACT || self.is_zero() {
+            return false;
+        }
+        let mut size = T::zero();
+        for row in self.poly.rows_iter().rev() {
+            let r = row.iter().rev().fold(T::zero(), |a, c| a * u_max + c.abs());
+            size = size * v_max + r;
+        }
+        let rel = T::from_f64(NOISE_ABORT_REL).expect("a small constant");
+        self.ideal_distance_at(u_max, v_max) >= size * rel
     }
 
     /// One top-down reduction step (article §3 def. 4) on the highest term of `self` that lies
@@ -345,9 +360,10 @@ mod tests {
     use poly::Rat;
 
     #[test]
-    fn error_bound_covers_the_true_error() {
-        // p = (1/3)·u + 0.1·v reduced by q = v + (1/7)·u: the u-coefficient of the result,
-        // 1/3 − 0.1/7, computed in f64, must be within its bound of the exact value.
+    fn bound_covers_the_distance_to_the_exact_combination() {
+        // p = (1/3)·u + 0.1·v reduced by q = v + (1/7)·u with the computed multiplier
+        // c = 0.1: the u-coefficient of the result must be within its bound of the exact
+        // combination p − c·q (an element of the ideal (p, q) whatever c is).
         let p = BiPoly::from_terms([(1.0 / 3.0, 1, 0), (0.1, 0, 1)]);
         let q = BiPoly::from_terms([(1.0, 0, 1), (1.0 / 7.0, 1, 0)]);
         let mut t = Tracked::new(p.clone());
@@ -356,7 +372,7 @@ mod tests {
         let truth = exact(1.0 / 3.0) - exact(0.1) * exact(1.0 / 7.0);
         let got = t.poly.coeff(1, 0);
         let err = (exact(got) - truth).abs();
-        let bound = exact(t.err.get(1, 0));
+        let bound = exact(t.dist.get(1, 0));
         assert!(err <= bound, "error {err} exceeds its bound {bound}");
         assert!(
             bound > Rat::from_integer(0.into()),
@@ -381,6 +397,10 @@ mod tests {
             let mut t = Tracked::new(p);
             t.cancel_with(Monomial::new(0, 1), &Tracked::new(q));
             assert!(t.is_zero(), "scale {s}: residue {} survived", t.poly);
+            assert!(
+                t.ideal_distance_at(&1.0, &1.0) > 0.0,
+                "scale {s}: the dropped residue is in the bound"
+            );
         }
     }
 }
