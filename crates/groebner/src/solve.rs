@@ -1053,7 +1053,8 @@ mod tests {
     /// Two teapot ray/piece systems (power-basis points about the piece's centre, ray origin,
     /// direction; from `tests/bezier_teapot.rs`' view): patch 22 on [0, ¼]² (4×4 pieces,
     /// the lead's reproducer) and patch 20 piece of a 16×16 cut.
-    const TEAPOT_CASES: [([[f64; 3]; 16], [f64; 3], [f64; 3]); 2] = [
+    type RayPiece = ([[f64; 3]; 16], [f64; 3], [f64; 3]);
+    const TEAPOT_CASES: [RayPiece; 2] = [
         (
             [
                 [
