@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Wall time of POV-Ray 3.7 against our `render` on the same scenes, in one run:
 #   benches/vs-povray.sh [SIZE]        (default 840: SIZE x SIZE pixels, no anti-aliasing)
-# Scenes: torus, whitted-torus, barth (scenes/*.scene and their equivalents benches/pov/*.pov).
+# Scenes: torus, whitted-torus, barth, teapot (scenes/*.scene and their equivalents
+# benches/pov/*.pov; the teapot's patches are converted from scenes/teapot.bpt here).
 # Both renderers get every core (`nproc`). Prints each wall time and the ratio ours / POV-Ray.
 # Without POV-Ray it says so and exits 0. Images go to a temporary directory, printed at the end.
 set -euo pipefail
@@ -23,10 +24,16 @@ out=$(mktemp -d)
 
 now() { date +%s.%N; }
 
+# scenes/teapot.bpt -> one POV-Ray bicubic_patch per 3x3 patch (rows of 4 points, as stored).
+awk 'NR == 1 { next }
+     NF == 2 { if (n) print "}"; n = 0; printf "bicubic_patch { type 1 flatness 0.01 u_steps 3 v_steps 3\n"; next }
+     NF == 3 { printf "%s  <%s, %s, %s>\n", (n ? "," : ""), $1, $2, $3; n++ }
+     END { if (n) print "}" }' "$root/scenes/teapot.bpt" >"$out/teapot-patches.inc"
+
 printf '%-14s %12s %12s %14s\n' scene "POV-Ray (s)" "ours (s)" "ours/POV-Ray"
-for scene in torus whitted-torus barth; do
+for scene in torus whitted-torus barth teapot; do
     t0=$(now)
-    povray +I"$here/pov/$scene.pov" +O"$out/$scene-povray.png" +W"$size" +H"$size" \
+    povray +I"$here/pov/$scene.pov" +L"$out" +O"$out/$scene-povray.png" +W"$size" +H"$size" \
         -A -D +WT"$threads" >"$out/$scene-povray.log" 2>&1 ||
         { echo "povray failed on $scene: see $out/$scene-povray.log" >&2; exit 1; }
     t1=$(now)
