@@ -1,0 +1,140 @@
+//! `groebner::solve` on the ray/piece systems of the teapot (the `tests/bezier_teapot.rs` view
+//! at 32×32, 16×16 pieces per patch, every piece whose box the ray crosses, no hull test), per
+//! method, and the two resultant determinants alone. Times are per system (throughput in
+//! elements). See `paper-notes/groebner.md` §5 and `paper-notes/resultant.md`.
+#![allow(missing_docs, reason = "criterion emits undocumented functions")]
+
+use std::hint::black_box;
+use std::path::Path;
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use glam::DVec3;
+use groebner::{
+    Method, RayPatchSystem, SolveOptions, bezout_resultant_v, ray_patch_system, solve,
+    sylvester_resultant_v,
+};
+use render::Camera;
+use render::scene::{CameraSpec, LookAtCamera};
+use render::surface::parse_bpt;
+
+/// Per piece: power-basis points about the centre of its box, the box, the centre (as the
+/// tracer builds them, `bezier_mesh.rs`).
+fn pieces(k: usize) -> Vec<(Vec<[f64; 3]>, [DVec3; 2], DVec3)> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/teapot.bpt");
+    let text = std::fs::read_to_string(path).expect("scenes/teapot.bpt is readable");
+    let patches = parse_bpt(&text).expect("teapot.bpt parses");
+    let mut out = Vec::new();
+    let step = 1.0 / k as f64;
+    for patch in &patches {
+        for a in 0..k {
+            for b in 0..k {
+                let u = [a as f64 * step, ((a + 1) as f64 * step).min(1.0)];
+                let v = [b as f64 * step, ((b + 1) as f64 * step).min(1.0)];
+                let piece = patch.sub_patch(u, v);
+                let bounds = piece.bounds();
+                let centre = (bounds.min + bounds.max) * 0.5;
+                let mut power: Vec<[f64; 3]> =
+                    piece.power_coeffs().iter().map(|c| c.to_array()).collect();
+                for (axis, c) in power[0].iter_mut().enumerate() {
+                    *c -= centre[axis];
+                }
+                out.push((power, [bounds.min, bounds.max], centre));
+            }
+        }
+    }
+    out
+}
+
+/// The systems of every primary ray of a `size`² view against every crossed piece box.
+fn teapot_systems(size: u32) -> Vec<RayPatchSystem<f64>> {
+    let spec = CameraSpec::LookAt(LookAtCamera {
+        eye: DVec3::new(5.5, -8.0, 6.0),
+        look_at: DVec3::new(0.45, 0.0, 1.35),
+        up: DVec3::Z,
+        view_field_deg: 34.0,
+    });
+    let cam = Camera::new(&spec, size, size);
+    let pieces = pieces(16);
+    let mut out = Vec::new();
+    for y in 0..size {
+        for x in 0..size {
+            let ray = cam.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
+            for (power, [lo, hi], centre) in &pieces {
+                // Slab test against the (unpadded) box.
+                let (mut t0, mut t1) = (0.0f64, f64::INFINITY);
+                for k in 0..3 {
+                    let inv = 1.0 / ray.dir[k];
+                    let (mut n, mut f) =
+                        ((lo[k] - ray.origin[k]) * inv, (hi[k] - ray.origin[k]) * inv);
+                    if n > f {
+                        std::mem::swap(&mut n, &mut f);
+                    }
+                    t0 = t0.max(n);
+                    t1 = t1.min(f);
+                }
+                if t0 > t1 {
+                    continue;
+                }
+                let o = ray.at(t0) - *centre;
+                if let Ok(sys) = ray_patch_system(power, 4, 4, &o.to_array(), &ray.dir.to_array()) {
+                    out.push(sys);
+                }
+            }
+        }
+    }
+    out
+}
+
+fn groebner_solve(c: &mut Criterion) {
+    let systems = teapot_systems(32);
+    let mut g = c.benchmark_group("teapot_ray_piece_systems");
+    g.throughput(Throughput::Elements(systems.len() as u64));
+    g.sample_size(10);
+    for method in [
+        Method::BezoutResultant,
+        Method::Resultant,
+        Method::Stam,
+        Method::Buchberger,
+    ] {
+        let opts = SolveOptions {
+            method,
+            ..SolveOptions::default()
+        };
+        g.bench_function(format!("solve_{method:?}"), |b| {
+            b.iter(|| {
+                systems
+                    .iter()
+                    .map(|s| {
+                        solve(black_box(&s.f1), black_box(&s.f2), &opts)
+                            .map_or(0, |x| x.roots.len())
+                    })
+                    .sum::<usize>()
+            })
+        });
+    }
+    g.bench_function("bezout_determinant", |b| {
+        b.iter(|| {
+            systems
+                .iter()
+                .map(|s| {
+                    bezout_resultant_v(black_box(&s.f1), black_box(&s.f2)).map_or(0, |p| p.degree())
+                })
+                .sum::<usize>()
+        })
+    });
+    g.bench_function("sylvester_determinant", |b| {
+        b.iter(|| {
+            systems
+                .iter()
+                .map(|s| {
+                    sylvester_resultant_v(black_box(&s.f1), black_box(&s.f2))
+                        .map_or(0, |p| p.degree())
+                })
+                .sum::<usize>()
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, groebner_solve);
+criterion_main!(benches);
