@@ -91,8 +91,9 @@ impl Coeffs for Vec<f64> {
 /// are a single rounding step of the map `a + w·u`, so no sign below that can be certified.
 const MAX_DEPTH: u32 = 52;
 
-/// Most subdivisions tried in one query before giving up on `f64` (a polynomial with many
-/// clustered roots is cheaper to isolate exactly than to subdivide for ever).
+/// Most subdivisions tried in one query, over all its runs, before giving up on `f64` (a
+/// polynomial with many clustered roots is cheaper to isolate exactly than to subdivide for
+/// ever).
 const MAX_SPLITS: u32 = 4000;
 
 /// A sub-interval `[u0, u1]` of `[0, 1]` with the Bernstein coefficients of `q` on it.
@@ -471,11 +472,11 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         mut self,
         first_only: bool,
         out: &mut Brackets,
+        splits: &mut u32,
         stats: &mut RootStats,
     ) -> Result<(), Stuck> {
         let mut stack: SmallVec<[Node<S>; 8]> = SmallVec::new();
         stack.push(self.take_top());
-        let mut splits = 0u32;
         while let Some(node) = stack.pop() {
             if node.u0 > self.u_beyond {
                 // Entirely beyond t_max (w rounded up), and everything left of it is done.
@@ -494,7 +495,7 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
                     Err(()) => return Err(self.stuck(&node, out)),
                 },
                 Class::Split => {
-                    if let Err(node) = self.expand(node, &mut stack, &mut splits, stats) {
+                    if let Err(node) = self.expand(node, &mut stack, splits, stats) {
                         return Err(self.stuck(&node, out));
                     }
                 }
@@ -553,7 +554,8 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
 /// [`BernsteinIsolator::run`] on `(t_min, t_max]` with coefficient storage sized to the
 /// degree: fixed arrays of exactly `n + 1` entries up to degree 10 (loops with constant
 /// bounds), a fixed 25-entry array up to degree 24 (no heap allocation), `Vec` above. The
-/// caller has certified the non-zero signs `s_min` of `p(t_min)` and `s_max` of `p(t_max)`.
+/// caller has certified the non-zero signs `s_min` of `p(t_min)` and `s_max` of `p(t_max)`;
+/// `splits` counts the subdivisions of the whole query (see [`MAX_SPLITS`]).
 /// When the map to `[0, 1]` overflows, the whole interval is reported stuck.
 pub(crate) fn run(
     p: &[f64],
@@ -561,6 +563,7 @@ pub(crate) fn run(
     (s_min, s_max): (i8, i8),
     first_only: bool,
     out: &mut Brackets,
+    splits: &mut u32,
     stats: &mut RootStats,
 ) -> Result<(), Stuck> {
     fn go<S: Coeffs>(
@@ -568,10 +571,11 @@ pub(crate) fn run(
         (t_min, t_max, s_min, s_max): (f64, f64, i8, i8),
         first_only: bool,
         out: &mut Brackets,
+        splits: &mut u32,
         stats: &mut RootStats,
     ) -> Result<(), Stuck> {
         match BernsteinIsolator::<S>::new(p, t_min, t_max, s_min, s_max) {
-            Some(iso) => iso.run(first_only, out, stats),
+            Some(iso) => iso.run(first_only, out, splits, stats),
             None => Err(Stuck {
                 t_a: t_min,
                 s_a: s_min,
@@ -583,18 +587,18 @@ pub(crate) fn run(
     }
     let args = (t_min, t_max, s_min, s_max);
     match p.len() {
-        2 => go::<[f64; 2]>(p, args, first_only, out, stats),
-        3 => go::<[f64; 3]>(p, args, first_only, out, stats),
-        4 => go::<[f64; 4]>(p, args, first_only, out, stats),
-        5 => go::<[f64; 5]>(p, args, first_only, out, stats),
-        6 => go::<[f64; 6]>(p, args, first_only, out, stats),
-        7 => go::<[f64; 7]>(p, args, first_only, out, stats),
-        8 => go::<[f64; 8]>(p, args, first_only, out, stats),
-        9 => go::<[f64; 9]>(p, args, first_only, out, stats),
-        10 => go::<[f64; 10]>(p, args, first_only, out, stats),
-        11 => go::<[f64; 11]>(p, args, first_only, out, stats),
-        12..=25 => go::<Cap<25>>(p, args, first_only, out, stats),
-        _ => go::<Vec<f64>>(p, args, first_only, out, stats),
+        2 => go::<[f64; 2]>(p, args, first_only, out, splits, stats),
+        3 => go::<[f64; 3]>(p, args, first_only, out, splits, stats),
+        4 => go::<[f64; 4]>(p, args, first_only, out, splits, stats),
+        5 => go::<[f64; 5]>(p, args, first_only, out, splits, stats),
+        6 => go::<[f64; 6]>(p, args, first_only, out, splits, stats),
+        7 => go::<[f64; 7]>(p, args, first_only, out, splits, stats),
+        8 => go::<[f64; 8]>(p, args, first_only, out, splits, stats),
+        9 => go::<[f64; 9]>(p, args, first_only, out, splits, stats),
+        10 => go::<[f64; 10]>(p, args, first_only, out, splits, stats),
+        11 => go::<[f64; 11]>(p, args, first_only, out, splits, stats),
+        12..=25 => go::<Cap<25>>(p, args, first_only, out, splits, stats),
+        _ => go::<Vec<f64>>(p, args, first_only, out, splits, stats),
     }
 }
 

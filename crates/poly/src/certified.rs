@@ -63,6 +63,8 @@ pub(crate) struct CertifiedSearch<'p> {
     p: &'p Poly<f64>,
     first_only: bool,
     runs_left: u32,
+    /// Subdivisions so far, over all runs.
+    splits: u32,
     /// The exact Sturm sequence of the stored polynomial, built on first need.
     exact: Option<SturmSequence<Rat>>,
     /// The roots found, sorted.
@@ -83,6 +85,7 @@ impl<'p> CertifiedSearch<'p> {
             p,
             first_only,
             runs_left: MAX_RUNS,
+            splits: 0,
             exact: None,
             found: SmallVec::new(),
         };
@@ -151,6 +154,7 @@ impl<'p> CertifiedSearch<'p> {
             s,
             self.first_only,
             &mut out,
+            &mut self.splits,
             stats,
         );
         let any = !out.is_empty();

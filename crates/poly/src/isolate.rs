@@ -4,9 +4,11 @@
 //! The default `f64` path is certified at `f64` speed: signs at the interval ends are
 //! certified with a rigorous Horner bound, the roots are isolated by Descartes' rule in the
 //! Bernstein basis with rigorous coefficient error bounds ([`IsolationMethod::Bernstein`]),
-//! and refined inside certified brackets. Only when a needed sign cannot be certified does the
-//! query switch to exact rational arithmetic on the same stored polynomial (counted in
-//! [`RootStats::exact_fallbacks`]). See `paper-notes/isolation.md`.
+//! and refined inside certified brackets. An exact factor `x^k` is divided out first; a piece
+//! where a sign cannot be certified gets a fresh run with its own error bound, and only what
+//! `f64` still cannot decide is isolated with exact rational arithmetic on the same stored
+//! polynomial, on that piece (counted in [`RootStats::exact_fallbacks`]; `certified.rs`).
+//! See `paper-notes/isolation.md`.
 
 use crate::bernstein::Bracket;
 use crate::certified::{CertifiedSearch, Found, exact_isolate};
