@@ -381,3 +381,85 @@ fn torus_and_equivalent_algebraic_surface_agree() {
         );
     }
 }
+
+/// `Bounding volume = SPHERE (c) r` clips an implicit surface to the ball, in the object's
+/// coordinates (it moves with `Translate`) and through a shape's internal frame (a torus about
+/// the x axis).
+#[test]
+fn a_bounding_sphere_clips_the_surface() {
+    let text = "#camera Eye = (0,-8,5) LookAt = (0,0,0) ViewField = 50\n\
+                #object Type = ALGEBRAIC_SURFACE Equation = z\n\
+                Bounding volume = SPHERE (0.5, 0, 0) 1  Translate = (0, 0, 1)\n\
+                #object Type = TORUS Center = (0,0,0) Axis = (1,0,0) MajorRadius = 2\n\
+                MinorRadius = 0.5  Bounding volume = SPHERE (0, 2, 0) 1\n";
+    let scene = render::scene::parse(text, std::path::Path::new("clip.scene")).unwrap();
+    let prepared = PreparedScene::new(&scene).unwrap();
+    let mut ws = Workspace::new();
+    let t_of = |object: usize, o: DVec3, d: DVec3, ws: &mut Workspace| {
+        prepared.primitives[object]
+            .surface
+            .intersect(&Ray::new(o, d), 0.0..f64::INFINITY, ws)
+            .map(|h| h.t)
+    };
+    // The plane z = 1 inside the disc |x − 0.5| < 1 (the ball moved up with the plane).
+    let down = DVec3::NEG_Z;
+    for (x, hit) in [(-0.4, true), (-0.6, false), (1.45, true), (1.55, false)] {
+        let t = t_of(0, DVec3::new(x, 0.0, 5.0), down, &mut ws);
+        match (hit, t) {
+            (true, Some(t)) => assert!((t - 4.0).abs() < 1e-9, "x = {x}: t = {t}"),
+            (false, None) => {}
+            _ => panic!("x = {x}: expected hit {hit}, got {t:?}"),
+        }
+    }
+    // Along +y through the torus's ring (the circle y² + z² = 4 in x = 0): the first three
+    // crossings (y = −2.5, −1.5, 1.5 … ) lie outside the ball about (0, 2, 0) except y = 1.5.
+    let t = t_of(1, DVec3::new(0.0, -5.0, 0.0), DVec3::Y, &mut ws).expect("hits at y = 1.5");
+    assert!((t - 6.5).abs() < 1e-9, "t = {t}");
+    let t = t_of(1, DVec3::new(0.0, 5.0, 0.0), DVec3::NEG_Y, &mut ws).expect("hits at y = 2.5");
+    assert!((t - 2.5).abs() < 1e-9, "t = {t}");
+}
+
+/// A ray that meets a surface exactly where it enters the surface's bounding box (head-on at
+/// the extreme point of a sphere or torus, the centre pixel of an axis-aligned camera) hits
+/// there, not at the far side.
+#[test]
+fn a_hit_on_the_bounding_box_face_is_found() {
+    let mut ws = Workspace::new();
+    let sphere = Implicit::new(Sphere::new(DVec3::ZERO, 1.0), None);
+    let down = Ray::new(DVec3::new(0.0, 0.0, 5.0), DVec3::NEG_Z);
+    let hit = sphere
+        .intersect(&down, 0.0..f64::INFINITY, &mut ws)
+        .expect("hits");
+    assert!(
+        (hit.t - 4.0).abs() < 1e-9,
+        "front of the sphere at t = 4, got {}",
+        hit.t
+    );
+    let torus = Implicit::new(Torus::new(2.0, 0.5), None);
+    let inward = Ray::new(DVec3::new(5.0, 0.0, 0.0), DVec3::NEG_X);
+    let hit = torus
+        .intersect(&inward, 0.0..f64::INFINITY, &mut ws)
+        .expect("hits");
+    assert!(
+        (hit.t - 2.5).abs() < 1e-9,
+        "outer equator at t = 2.5, got {}",
+        hit.t
+    );
+}
+
+/// The same for a superquadric (its own piecewise restriction): a ray along an axis meets the
+/// `p = 4` superellipsoid at the centre of a box face.
+#[test]
+fn a_superquadric_hit_on_its_box_face_is_found() {
+    let mut ws = Workspace::new();
+    let sq = Superquadric::new(DVec3::new(1.0, 2.0, 0.5), 4);
+    let ray = Ray::new(DVec3::new(0.0, -6.0, 0.0), DVec3::Y);
+    let hit = sq
+        .intersect(&ray, 0.0..f64::INFINITY, &mut ws)
+        .expect("hits");
+    assert!(
+        (hit.t - 4.0).abs() < 1e-9,
+        "face centre y = −2 at t = 4, got {}",
+        hit.t
+    );
+}

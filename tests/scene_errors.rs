@@ -276,6 +276,20 @@ const CASES: &[Case] = &[
         "invalid `Bounding volume`: range [2, 1] is empty",
     ),
     case(
+        "#object Type = BOX Min = (0,0,0) Max = (1,1,1)\nBounding volume = SPHERE (0,0,0) -1",
+        3,
+        19,
+        "Bounding volume",
+        "invalid `Bounding volume`: the sphere's radius must be positive, found -1",
+    ),
+    case(
+        "#object Type = BOX Min = (0,0,0) Max = (1,1,1)\nBounding volume = SPHERE (0,0) 1",
+        3,
+        26,
+        "SPHERE",
+        "expected a centre `(x, y, z)` after `SPHERE`, found another number of components",
+    ),
+    case(
         "!#camera Eye = (1,2,3) LookAt = (1,2,3) ViewField = 50",
         1,
         23,

@@ -6,7 +6,8 @@ use crate::scene::{
     BoundingVolume, Light, Material, Scene, SceneInvalid, ShapeKind, Texture, World,
 };
 use crate::surface::{
-    AaBox, Algebraic, Implicit, Plane, Polygon, Sphere, Superquadric, Surface, Torus, Transformed,
+    AaBox, Algebraic, Implicit, ImplicitFn, Plane, Polygon, Sphere, Superquadric, Surface, Torus,
+    Transformed,
 };
 use crate::workspace::RootMethods;
 
@@ -46,11 +47,7 @@ impl PreparedScene {
             };
             let world_from_object = Transform::from_object(&object.transform)
                 .ok_or_else(|| bad("Transform", "is singular"))?;
-            let user_bounds = match object.bounding {
-                BoundingVolume::None => None,
-                BoundingVolume::Box { min, max } => Some(Bounds3::new(min, max)),
-            };
-            let surface = build_surface(&object.shape, user_bounds, &world_from_object)
+            let surface = build_surface(&object.shape, &object.bounding, &world_from_object)
                 .ok_or_else(|| bad("Type", "has degenerate geometry"))?;
             primitives.push(Primitive {
                 surface,
@@ -76,20 +73,31 @@ fn place<S: Surface + 'static>(s: S, m: &Transform) -> Box<dyn Surface> {
     }
 }
 
-/// Builds the world-space surface of one shape. `user_bounds` is in the shape's coordinates;
-/// shapes placed by an internal frame (torus, superquadric) get it through the same frame.
+/// An implicit surface clipped by the scene's `Bounding volume` (in the shape's coordinates).
+fn implicit<F: ImplicitFn>(f: F, bounding: &BoundingVolume) -> Implicit<F> {
+    match *bounding {
+        BoundingVolume::None => Implicit::new(f, None),
+        BoundingVolume::Box { min, max } => Implicit::new(f, Some(Bounds3::new(min, max))),
+        BoundingVolume::Sphere { center, radius } => {
+            Implicit::new(f, None).with_clip_sphere(center, radius)
+        }
+    }
+}
+
+/// Builds the world-space surface of one shape. `bounding` is in the shape's coordinates;
+/// shapes placed by an internal frame (torus) get it through the same frame.
 fn build_surface(
     shape: &ShapeKind,
-    user_bounds: Option<Bounds3>,
+    bounding: &BoundingVolume,
     world_from_object: &Transform,
 ) -> Option<Box<dyn Surface>> {
     Some(match shape {
         ShapeKind::Sphere { center, radius } => place(
-            Implicit::new(Sphere::new(*center, *radius), user_bounds),
+            implicit(Sphere::new(*center, *radius), bounding),
             world_from_object,
         ),
         ShapeKind::Plane { origin, normal } => place(
-            Implicit::new(Plane::new(*origin, *normal), user_bounds),
+            implicit(Plane::new(*origin, *normal), bounding),
             world_from_object,
         ),
         ShapeKind::Polygon { vertices } => place(Polygon::new(vertices)?, world_from_object),
@@ -117,12 +125,27 @@ fn build_surface(
             } else {
                 Transform::frame(*center, *axis)?
             };
-            let local_user = user_bounds.map(|b| frame.inverse().apply_bounds(&b));
+            let inverse = frame.inverse();
+            let local = match *bounding {
+                BoundingVolume::None => BoundingVolume::None,
+                BoundingVolume::Box { min, max } => {
+                    let b = inverse.apply_bounds(&Bounds3::new(min, max));
+                    BoundingVolume::Box {
+                        min: b.min,
+                        max: b.max,
+                    }
+                }
+                // The frame is rigid: the sphere keeps its radius.
+                BoundingVolume::Sphere { center, radius } => BoundingVolume::Sphere {
+                    center: inverse.apply_point(center),
+                    radius,
+                },
+            };
             let m = world_from_object.compose(&frame)?;
-            place(Implicit::new(Torus::new(*major, *minor), local_user), &m)
+            place(implicit(Torus::new(*major, *minor), &local), &m)
         }
         ShapeKind::Algebraic { poly } => place(
-            Implicit::new(Algebraic::new(poly.clone()), user_bounds),
+            implicit(Algebraic::new(poly.clone()), bounding),
             world_from_object,
         ),
         ShapeKind::BezierPatches { patches, method } => place(

@@ -218,6 +218,7 @@ enum Eval {
     TextureType(TextureType),
     Illumination(Illumination),
     Bounds(Option<(DVec3, DVec3)>),
+    Sphere(DVec3, f64),
     Text(String),
     Points(Vec<DVec3>),
 }
@@ -232,7 +233,7 @@ impl Eval {
             Eval::Shape(_) => "an object type",
             Eval::TextureType(_) => "a texture type",
             Eval::Illumination(_) => "an illumination model",
-            Eval::Bounds(_) => "a bounding volume",
+            Eval::Bounds(_) | Eval::Sphere(..) => "a bounding volume",
             Eval::Text(_) => "a name",
             Eval::Points(_) => "a list of points",
         }
@@ -321,6 +322,10 @@ impl<'a> Fields<'a> {
                                 }
                             }
                             Eval::Bounds(Some((lo, hi)))
+                        }
+                        Value::BoundingSphere(s) => {
+                            let c = |i: usize| eval_const(&s[i], &constants);
+                            Eval::Sphere(DVec3::new(c(0)?, c(1)?, c(2)?), c(3)?)
                         }
                         Value::Path(p) | Value::Word(p) => Eval::Text(p.clone()),
                         Value::Points(points) => Eval::Points(
@@ -874,7 +879,29 @@ fn build_object(
             min: *min,
             max: *max,
         },
-        Some(other) => return Err(Fields::wrong(other, "NONE or BOX [x0,x1]x[y0,y1]x[z0,z1]")),
+        Some(Field {
+            value: Eval::Sphere(center, radius),
+            value_span,
+            ..
+        }) => {
+            if !(*radius > 0.0 && radius.is_finite()) {
+                return Err(invalid(
+                    value_span,
+                    Key::BoundingVolume,
+                    format!("the sphere's radius must be positive, found {radius}"),
+                ));
+            }
+            BoundingVolume::Sphere {
+                center: *center,
+                radius: *radius,
+            }
+        }
+        Some(other) => {
+            return Err(Fields::wrong(
+                other,
+                "NONE, BOX [x0,x1]x[y0,y1]x[z0,z1] or SPHERE (x,y,z) r",
+            ));
+        }
     };
 
     let mut transform = ObjectTransform::default();

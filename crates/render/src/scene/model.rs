@@ -476,7 +476,8 @@ impl Default for Material {
     }
 }
 
-/// A bounding volume (`Bounding volume = NONE | BOX [x0,x1]x[y0,y1]x[z0,z1]`).
+/// A bounding volume (`Bounding volume = NONE | BOX [x0,x1]x[y0,y1]x[z0,z1] | SPHERE (x,y,z) r`).
+/// For implicit surfaces it clips: only the part of the surface inside is traced.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub enum BoundingVolume {
     /// No user bounding volume.
@@ -488,6 +489,13 @@ pub enum BoundingVolume {
         min: DVec3,
         /// Highest corner, `max ≥ min` componentwise.
         max: DVec3,
+    },
+    /// A sphere in the object's coordinates.
+    Sphere {
+        /// Centre.
+        center: DVec3,
+        /// Radius, positive.
+        radius: f64,
     },
 }
 
@@ -583,6 +591,14 @@ impl Scene {
                 return Err(at(InvalidModel::new(
                     "Bounding volume",
                     "must be a finite box with min ≤ max",
+                )));
+            }
+            if let BoundingVolume::Sphere { center, radius } = object.bounding
+                && !(center.is_finite() && radius.is_finite() && radius > 0.0)
+            {
+                return Err(at(InvalidModel::new(
+                    "Bounding volume",
+                    "must be a finite sphere with a positive radius",
                 )));
             }
             let t = &object.transform;

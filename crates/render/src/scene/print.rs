@@ -87,6 +87,12 @@ fn print_value(out: &mut String, value: &Value) {
         Value::TextureType(t) => out.push_str(t.name()),
         Value::Illumination(i) => out.push_str(illumination_name(*i)),
         Value::Bounds(None) => out.push_str("NONE"),
+        Value::BoundingSphere(s) => {
+            out.push_str("SPHERE ");
+            print_tuple(out, &s[..3]);
+            out.push(' ');
+            print_expr(out, &s[3]);
+        }
         Value::Bounds(Some(ranges)) => {
             out.push_str("BOX ");
             for (i, [lo, hi]) in ranges.iter().enumerate() {
@@ -298,6 +304,10 @@ mod tests {
             .boxed(),
             ValueKind::Bounds => prop_oneof![
                 Just(Value::Bounds(None)),
+                prop::collection::vec(expr(), 4).prop_map(|v| {
+                    let four: [Expr; 4] = v.try_into().unwrap_or_else(|_| unreachable!());
+                    Value::BoundingSphere(Box::new(four))
+                }),
                 prop::collection::vec(expr(), 6).prop_map(|v| {
                     let mut it = v.into_iter();
                     let mut pair = || {

@@ -124,6 +124,8 @@ pub enum Value {
     Illumination(Illumination),
     /// `NONE` (`None`) or `BOX [x0,x1]x[y0,y1]x[z0,z1]` (the three `[lo, hi]` pairs).
     Bounds(Option<Box<[[Expr; 2]; 3]>>),
+    /// `SPHERE (x, y, z) r`: a bounding sphere, centre then radius.
+    BoundingSphere(Box<[Expr; 4]>),
     /// A file name, as written (quotes removed).
     Path(String),
     /// Inline points `(x, y, z) (x, y, z) …` (`Control points` of a Bézier patch), each
@@ -1067,9 +1069,32 @@ impl<'a> Parser<'a> {
     /// `NONE` or `BOX [x0,x1]x[y0,y1]x[z0,z1]` (the box may start on the next line, as in
     /// Stam's §4.2.1).
     fn bounds(&mut self, key: Key) -> Result<Value, SceneError> {
-        let (w, span) = self.word_value(key, "NONE or BOX")?;
+        let (w, span) = self.word_value(key, "NONE, BOX or SPHERE")?;
         if w.eq_ignore_ascii_case("NONE") {
             return Ok(Value::Bounds(None));
+        }
+        if w.eq_ignore_ascii_case("SPHERE") {
+            let at = self.peek()?.span.clone();
+            let Value::Tuple(centre) = self.tuple_or_expr()? else {
+                return Err(SceneError::at(
+                    &at,
+                    ErrorKind::Expected {
+                        expected: "a centre `(x, y, z)` after `SPHERE`".into(),
+                        found: "a single number".into(),
+                    },
+                ));
+            };
+            let Ok([x, y, z]) = <[Expr; 3]>::try_from(centre) else {
+                return Err(SceneError::at(
+                    &at,
+                    ErrorKind::Expected {
+                        expected: "a centre `(x, y, z)` after `SPHERE`".into(),
+                        found: "another number of components".into(),
+                    },
+                ));
+            };
+            let radius = self.expr()?;
+            return Ok(Value::BoundingSphere(Box::new([x, y, z, radius])));
         }
         if !w.eq_ignore_ascii_case("BOX") {
             return Err(SceneError::at(
@@ -1077,7 +1102,7 @@ impl<'a> Parser<'a> {
                 ErrorKind::UnknownWord {
                     key: key.name(),
                     found: w,
-                    expected: "NONE or BOX",
+                    expected: "NONE, BOX or SPHERE",
                 },
             ));
         }

@@ -71,6 +71,9 @@ pub struct Implicit<F> {
     /// Diagonal of `bounds` (0 when unbounded).
     diagonal: f64,
     bounds: Option<Bounds3>,
+    /// A user bounding sphere `(centre, radius)` (`Bounding volume = SPHERE …`): only the
+    /// part of the surface inside it is traced.
+    clip_sphere: Option<(DVec3, f64)>,
 }
 
 impl<F: ImplicitFn> Implicit<F> {
@@ -88,7 +91,21 @@ impl<F: ImplicitFn> Implicit<F> {
             degree,
             diagonal,
             bounds,
+            clip_sphere: None,
         }
+    }
+
+    /// Clips the surface to the sphere of centre `c` and radius `r` (in the shape's
+    /// coordinates), and tightens the bounding box to the sphere's.
+    pub fn with_clip_sphere(self, c: DVec3, r: f64) -> Self {
+        let sphere_box = Bounds3::new(c - DVec3::splat(r), c + DVec3::splat(r));
+        let mut s = Implicit::new(self.f, Some(sphere_box));
+        if let Some(b) = self.bounds {
+            s.bounds = s.bounds.map(|sb| sb.intersection(&b));
+            s.diagonal = s.bounds.map_or(0.0, |b| b.diagonal());
+        }
+        s.clip_sphere = Some((c, r));
+        s
     }
 
     /// The wrapped function.
@@ -153,6 +170,25 @@ fn sphere_segment(ray: &Ray, c: DVec3, r: f64) -> Option<Range<f64>> {
     Some((-b - half - pad)..(-b + half + pad))
 }
 
+/// How far below the moved origin (`s = 0`, a bounding-volume entry) the root search starts,
+/// relative to `|t0| + chord`: well above the few roundings of the slab entry, so a hit exactly
+/// on the entry face is kept (a head-on ray at a sphere's pole, the centre pixel of an
+/// axis-aligned camera); a clipped surface is admitted at most this far outside its volume.
+pub const ENTRY_MARGIN_REL: f64 = 1e-9;
+
+/// The lower end of the root search in `s = t − t0` after the origin moved to `t0`. When `t0`
+/// is the range's own start the search is open at `0`, as the range is (a spawned ray must not
+/// re-hit the surface it leaves); when `t0` is a bounding-volume entry past the start, the
+/// search starts [`ENTRY_MARGIN_REL`] before it (but never before the range), so the entry
+/// point itself is searched.
+pub(crate) fn search_start(range_start: f64, t0: f64, chord: f64) -> f64 {
+    if t0 > range_start {
+        (range_start - t0).max(-ENTRY_MARGIN_REL * (t0.abs() + chord))
+    } else {
+        0.0
+    }
+}
+
 /// Clips `t_range` to `bounds` (counting a rejection for `kind`), or passes it through for an
 /// unbounded surface.
 pub(crate) fn clip(
@@ -183,9 +219,13 @@ impl<F: ImplicitFn> Implicit<F> {
         ws: &mut Workspace,
         any_root: bool,
     ) -> Option<(f64, DVec3)> {
-        let t_range = match self.f.bounding_sphere() {
-            None => t_range,
-            Some((c, r)) => match sphere_segment(ray, c, r) {
+        // The shape's own bounding sphere (torus), then the user's clipping sphere.
+        let mut t_range = t_range;
+        for (c, r) in [self.f.bounding_sphere(), self.clip_sphere]
+            .into_iter()
+            .flatten()
+        {
+            t_range = match sphere_segment(ray, c, r) {
                 Some(s) if s.start < t_range.end && s.end > t_range.start => {
                     t_range.start.max(s.start)..t_range.end.min(s.end)
                 }
@@ -193,8 +233,9 @@ impl<F: ImplicitFn> Implicit<F> {
                     ws.stats.per_kind[self.f.kind().index()].bbox_rejects += 1;
                     return None;
                 }
-            },
-        };
+            };
+        }
+        let range_start = t_range.start;
         let seg = clip(self.bounds.as_ref(), ray, t_range, ws, self.f.kind())?;
         // Move the origin to where the ray enters the box (or to the range start): the
         // restricted polynomial is then built from small numbers near the surface, which is
@@ -210,7 +251,8 @@ impl<F: ImplicitFn> Implicit<F> {
         } else {
             self.x_tol(ray.dir, o, hi)
         };
-        let s = smallest_root_in(ws, 0.0, hi, x_tol)?;
+        let lo = search_start(range_start, t0, hi);
+        let s = smallest_root_in(ws, lo, hi, x_tol)?;
         Some((t0 + s, o + ray.dir * s))
     }
 }

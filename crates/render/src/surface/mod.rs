@@ -41,7 +41,7 @@ pub use bezier_mesh::{
 };
 pub use bezier_patch::{BezierPatch, MAX_PATCH_DEGREE, POWER_ZERO_REL, PatchError};
 pub use bpt::{BptError, MAX_BPT_PATCHES, parse_bpt, parse_control_points};
-pub use implicit::{Implicit, ImplicitFn, ROOT_X_TOL_REL, SINGULAR_P_ERR_REL};
+pub use implicit::{ENTRY_MARGIN_REL, Implicit, ImplicitFn, ROOT_X_TOL_REL, SINGULAR_P_ERR_REL};
 pub use patch_stats::{HIST_BINS, PatchStats};
 pub use plane::Plane;
 pub use polygon::Polygon;

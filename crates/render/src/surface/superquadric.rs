@@ -20,7 +20,7 @@ use std::ops::Range;
 
 use glam::DVec3;
 
-use super::implicit::{ROOT_X_TOL_REL, SINGULAR_P_ERR_REL, clip, smallest_root_in};
+use super::implicit::{ROOT_X_TOL_REL, SINGULAR_P_ERR_REL, clip, search_start, smallest_root_in};
 use super::{Hit, Surface, SurfaceGeometry, SurfaceKind};
 use crate::geometry::{Bounds3, Ray, gamma};
 use crate::workspace::Workspace;
@@ -75,6 +75,7 @@ impl Superquadric {
         ws: &mut Workspace,
         any: bool,
     ) -> Option<(f64, DVec3, u32)> {
+        let range_start = t_range.start;
         let seg = clip(
             Some(&self.bounds),
             ray,
@@ -108,7 +109,14 @@ impl Superquadric {
             self.restrict(o, ray.dir, signs, &mut ws.coeffs);
             let hi = end - start;
             let x_tol = if any { hi } else { x_tol_full };
-            if let Some(s) = smallest_root_in(ws, 0.0, hi, x_tol) {
+            // Only the first piece starts at the box entry; later ones start where the previous
+            // piece's search (closed at its end) stopped.
+            let lo = if start == seg.start {
+                search_start(range_start, start, hi)
+            } else {
+                0.0
+            };
+            if let Some(s) = smallest_root_in(ws, lo, hi, x_tol) {
                 let tag = octant_tag(signs);
                 return Some((start + s, o + ray.dir * s, tag));
             }
