@@ -41,6 +41,7 @@
 //!
 //! [`Rat`]: poly::Rat
 
+use num_traits::Signed;
 use poly::{BiPoly, Monomial, Scalar};
 
 use crate::roots::SolveScalar;
@@ -108,7 +109,9 @@ impl<T: Scalar> ErrGrid<T> {
     }
 
     fn add(&mut self, i: usize, j: usize, x: T) {
-        self.ensure(i + 1, j + 1);
+        if i >= self.stride || (j + 1) * self.stride > self.data.len() {
+            self.ensure(i + 1, j + 1);
+        }
         let k = j * self.stride + i;
         self.data[k] = self.data[k].clone() + x;
     }
@@ -198,18 +201,28 @@ impl<T: SolveScalar> Tracked<T> {
                 self.poly.rows().max(rows + x.v),
             );
             let (ac, u) = (c.abs(), unit_roundoff::<T>());
-            let two = T::one() + T::one();
+            let two_ac = (T::one() + T::one()) * &ac;
             let ds = self.dist.stride;
+            let (qs, ps) = (q.poly.stride(), self.poly.stride());
+            let (qc, pc) = (q.poly.coeffs(), self.poly.coeffs());
             for j in 0..rows {
                 for i in 0..stride {
-                    let qk = q.poly.coeff(i, j).abs();
+                    let qk = if i < qs {
+                        qc.get(j * qs + i).map_or_else(T::zero, Signed::abs)
+                    } else {
+                        T::zero()
+                    };
                     let dq = q.dist.get(i, j);
                     if qk.is_zero() && dq.is_zero() {
                         continue;
                     }
                     let (ti, tj) = (i + x.u, j + x.v);
-                    let pk = self.poly.coeff(ti, tj).abs();
-                    let add = ac.clone() * dq + u.clone() * (pk + two.clone() * &ac * qk);
+                    let pk = if ti < ps {
+                        pc.get(tj * ps + ti).map_or_else(T::zero, Signed::abs)
+                    } else {
+                        T::zero()
+                    };
+                    let add = ac.clone() * dq + u.clone() * (pk + two_ac.clone() * qk);
                     let slot = &mut self.dist.data[tj * ds + ti];
                     *slot = slot.clone() + add;
                 }
@@ -263,9 +276,14 @@ impl<T: SolveScalar> Tracked<T> {
         }
         // d ← d/|lc| + u·|c/lc| (p*/lc is in the ideal for any lc).
         self.dist.scale(&(T::one() / lc.abs()));
+        self.dist.ensure(self.poly.stride(), self.poly.rows());
         let u = unit_roundoff::<T>();
-        for (m, c) in self.poly.terms() {
-            self.dist.add(m.u, m.v, u.clone() * c.abs());
+        let (ds, ps) = (self.dist.stride, self.poly.stride());
+        for (k, c) in self.poly.coeffs().iter().enumerate() {
+            if !c.is_zero() {
+                let slot = &mut self.dist.data[(k / ps) * ds + k % ps];
+                *slot = slot.clone() + u.clone() * c.abs();
+            }
         }
     }
 
