@@ -54,7 +54,8 @@ const SPLIT_FRACTIONS: [f64; 4] = [
 pub(crate) enum Found {
     /// A certified `f64` bracket (refined in `f64`).
     Bracket(Bracket),
-    /// An interval from exact isolation (refined with the exact sequence).
+    /// An interval from exact isolation: refined in `f64` when its end signs are certified
+    /// opposite, else with the exact sequence.
     Exact(RootInterval<f64>),
 }
 
