@@ -295,6 +295,11 @@ pub fn solve<T: SolveScalar>(
     stats.u_roots = u_roots.len();
 
     let system = [f1.map(Scalar::nearest_f64), f2.map(Scalar::nearest_f64)];
+    // v-candidates are searched a Newton step beyond the box: a u-candidate off by δ moves
+    // the v of F1(u, ·) by ~|dv/du|·δ, which near an edge can leave the box although the
+    // polished root is inside (the box test applies after polishing).
+    let margin = NEWTON_MAX_STEP_REL * (vb[1] - vb[0]).max(opts.x_tol);
+    let v_search = [vb[0] - margin, vb[1] + margin];
     let mut roots: Vec<Root> = Vec::new();
     for &u in &u_roots {
         // Step 3: the first source that does not vanish at u gives the candidates; if none of
@@ -319,7 +324,7 @@ pub fn solve<T: SolveScalar>(
                 let (Some(ut), Some(u_err)) = (ut, T::from_f64(u_err)) else {
                     continue;
                 };
-                let Some(candidates) = v_candidates(g, &ut, &u_err, vb, opts.x_tol) else {
+                let Some(candidates) = v_candidates(g, &ut, &u_err, v_search, opts.x_tol) else {
                     continue; // g(u, v) ≡ 0
                 };
                 let uf = ut.nearest_f64();
@@ -340,9 +345,20 @@ pub fn solve<T: SolveScalar>(
             }
         }
     }
-    roots.sort_by(|a, b| a.u.total_cmp(&b.u).then(a.v.total_cmp(&b.v)));
+    // Merge duplicates against every kept root: after sorting by u, two copies of one root
+    // need not be adjacent (another root's u can fall between theirs).
     let merge = 4.0 * opts.x_tol;
-    roots.dedup_by(|b, a| (a.u - b.u).abs() <= merge && (a.v - b.v).abs() <= merge);
+    let mut unique: Vec<Root> = Vec::with_capacity(roots.len());
+    for r in roots {
+        if !unique
+            .iter()
+            .any(|a| (a.u - r.u).abs() <= merge && (a.v - r.v).abs() <= merge)
+        {
+            unique.push(r);
+        }
+    }
+    let mut roots = unique;
+    roots.sort_by(|a, b| a.u.total_cmp(&b.u).then(a.v.total_cmp(&b.v)));
     Ok(Solution {
         roots,
         verdict: Verdict::Finite,

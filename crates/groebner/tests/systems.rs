@@ -133,6 +133,17 @@ proptest! {
                     "{m:?} f64 root {r:?} not among exact {:?}", exact.roots);
             }
         }
+        // The f64 Gröbner methods (certified basis, or the resultant when the basis cannot be
+        // certified) find the same root set.
+        if !singular {
+            for m in [Method::Stam, Method::Buchberger] {
+                let fl = solve(&g1, &g2, &SolveOptions { method: m, ..Default::default() }).unwrap();
+                for p in &pts {
+                    prop_assert!(found(&fl.roots, p, POS_TOL), "{m:?} f64 missed {p:?}: {:?}", fl);
+                }
+                prop_assert_eq!(fl.roots.len(), exact.roots.len(), "{:?} f64: {:?} vs {:?}", m, fl.roots, exact.roots);
+            }
+        }
     }
 
     /// Low degree (resultant degree ≤ 6): Stam's loop and Buchberger generate the same ideal,
