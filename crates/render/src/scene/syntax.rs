@@ -1667,7 +1667,11 @@ mod tests {
             ),
             (
                 "#object Type = BOX Bounding volume = SPHERE",
-                "t.scene:1:38: unknown value `SPHERE` for `Bounding volume` (expected NONE or BOX)",
+                "t.scene:1:44: expected a number, a name or `(`, found end of file",
+            ),
+            (
+                "#object Type = BOX Bounding volume = BALL (0,0,0) 1",
+                "t.scene:1:38: unknown value `BALL` for `Bounding volume` (expected NONE, BOX or SPHERE)",
             ),
             (
                 "#world Radius^x = 1",
