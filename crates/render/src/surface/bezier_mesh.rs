@@ -552,6 +552,7 @@ impl BezierMesh {
         let st = sol.stats;
         stats.record_degrees(st.basis_size, st.u_degree, st.v_degree);
         stats.rejected_by_solver += st.rejected as u64;
+        stats.groebner_fallbacks += u64::from(st.fallback);
         match sol.verdict {
             Verdict::NoCommonRoot => stats.no_common_root += 1,
             Verdict::Infinite => stats.infinite += 1,

@@ -39,6 +39,9 @@ pub struct PatchStats {
     pub outside_range: u64,
     /// Solves that returned an error (limits exceeded); the sub-patch is treated as missed.
     pub errors: u64,
+    /// `GROEBNER` solves whose `f64` basis could not be certified, so the Bézout resultant
+    /// was solved instead (`groebner::SolveStats::fallback`; paper-notes/groebner.md §5).
+    pub groebner_fallbacks: u64,
     /// Nanoseconds in ray/sub-patch tests (building `F1`, `F2`, solving, verifying).
     pub test_nanos: u64,
     /// Of which nanoseconds in the elimination and root finding ([`groebner::solve`]).
@@ -77,6 +80,7 @@ impl PatchStats {
         self.rejected_by_residual += o.rejected_by_residual;
         self.outside_range += o.outside_range;
         self.errors += o.errors;
+        self.groebner_fallbacks += o.groebner_fallbacks;
         self.test_nanos += o.test_nanos;
         self.solve_nanos += o.solve_nanos;
     }
@@ -150,6 +154,11 @@ impl fmt::Display for PatchStats {
             f,
             "  solver errors (treated as miss)    {:>12}",
             self.errors
+        )?;
+        writeln!(
+            f,
+            "  Groebner basis not certified (f64), resultant used {:>8}",
+            self.groebner_fallbacks
         )?;
         if self.solves > 0 {
             let per = self.test_nanos as f64 / self.solves as f64 / 1e3;
