@@ -407,10 +407,10 @@ fn eliminate_groebner<T: SolveScalar>(
     x_tol: f64,
     stats: &mut SolveStats,
 ) -> Result<Elimination<T>, Error> {
-    let (t1, t2) = (Tracked::new(f1.clone()), Tracked::new(f2.clone()));
     if !T::EXACT {
         return eliminate_groebner_f64(f1, f2, method, boxes, x_tol, stats);
     }
+    let (t1, t2) = (Tracked::new(f1.clone()), Tracked::new(f2.clone()));
     let mut tracked = match method {
         Method::Stam => stam_tracked(t1, t2)?,
         _ => reduce_tracked_keep(buchberger_tracked(vec![t1, t2])?),
