@@ -136,13 +136,44 @@ impl IntPoly {
     }
 
     /// Exact quotient by `g`, assumed to divide `self`, rescaled by a positive constant to
-    /// coprime integers. (Rational division then clearing: `g` need not be monic.)
+    /// coprime integers (`g` need not be monic).
+    ///
+    /// Pseudo-division in integers: `lc(g)^(m−n+1)·self = Q·g` with an integer `Q` and, since
+    /// `g` divides `self`, no remainder; `Q` is negated when that factor is negative, then made
+    /// primitive. (The first version divided as rationals, which spent most of an exact
+    /// fallback on gcds of fractions.)
     pub(crate) fn div_exact(&self, g: &IntPoly) -> Self {
-        let (q, _) = self
-            .to_qpoly()
-            .div_rem(&g.to_qpoly())
-            .expect("divisor is non-zero");
-        IntPoly::from_qpoly(&q)
+        let n = g.degree();
+        let lc = g.c.last().expect("divisor is non-zero");
+        if self.is_zero() || self.degree() < n {
+            return IntPoly { c: Vec::new() };
+        }
+        let m = self.degree();
+        let mut r = self.c.clone();
+        let mut q = vec![BigInt::zero(); m - n + 1];
+        for k in (n..=m).rev() {
+            let top = std::mem::take(&mut r[k]);
+            for x in q.iter_mut().skip(k - n + 1) {
+                *x *= lc;
+            }
+            for x in r.iter_mut().take(k) {
+                *x *= lc;
+            }
+            if !top.is_zero() {
+                for (j, gj) in g.c.iter().enumerate().take(n) {
+                    r[k - n + j] -= &top * gj;
+                }
+            }
+            q[k - n] = top;
+        }
+        debug_assert!(r.iter().all(Zero::is_zero), "g divides self");
+        let negative = lc.is_negative() && (m - n + 1) % 2 == 1;
+        if negative {
+            for x in &mut q {
+                *x = -std::mem::take(x);
+            }
+        }
+        IntPoly::trimmed(q).primitive()
     }
 
     /// The exact sign (−1, 0, 1) of `p(x)`.
@@ -226,6 +257,38 @@ mod tests {
             sg.is_positive() == sr.is_positive(),
             "positive multiple: {sg} vs {sr}"
         );
+    }
+
+    #[test]
+    fn div_exact_is_a_positive_multiple_of_the_quotient() {
+        // g with a negative leading coefficient and an odd number of steps (sign flip), and
+        // with a positive one; the quotient has a content to remove.
+        for (g, h) in [
+            (ip(&[3, -2]), ip(&[-7, 5, 1])),
+            (ip(&[3, -2]), ip(&[4, 0, -6, 2])),
+            (ip(&[-1, 0, 4]), ip(&[6, -3, 9])),
+        ] {
+            let a = IntPoly::from_qpoly(&(g.to_qpoly() * h.to_qpoly()));
+            let got = a.div_exact(&g).to_qpoly();
+            let want = a.to_qpoly().div_rem(&g.to_qpoly()).unwrap().0;
+            assert_eq!(
+                got.clone().make_monic(),
+                want.clone().make_monic(),
+                "same line"
+            );
+            for x in [q(7, 3), q(-5, 2), q(11, 1)] {
+                let (sg, sw) = (got.eval(&x), want.eval(&x));
+                assert!(
+                    sg.is_positive() == sw.is_positive(),
+                    "positive multiple at {x}"
+                );
+            }
+            let content = got
+                .coeffs()
+                .iter()
+                .fold(BigInt::zero(), |g, c| g.gcd(c.numer()));
+            assert!(content.is_one(), "primitive: {got:?}");
+        }
     }
 
     #[test]
