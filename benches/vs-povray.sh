@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Wall time of POV-Ray 3.7 against our `render` on the same scenes, in one run:
 #   benches/vs-povray.sh [SIZE]        (default 840: SIZE x SIZE pixels, no anti-aliasing)
-# Scenes: torus, whitted-torus, barth, teapot (scenes/*.scene and their equivalents
+# Scenes: torus, whitted-torus, barth, teapot, teapot-resultant (scenes/*.scene and their equivalents
 # benches/pov/*.pov; the teapot's patches are converted from scenes/teapot.bpt here).
 # Both renderers get every core (`nproc`). Prints each wall time and the ratio ours / POV-Ray.
 # Without POV-Ray it says so and exits 0. Images go to a temporary directory, printed at the end.
@@ -31,9 +31,11 @@ awk 'NR == 1 { next }
      END { if (n) print "}" }' "$root/scenes/teapot.bpt" >"$out/teapot-patches.inc"
 
 printf '%-14s %12s %12s %14s\n' scene "POV-Ray (s)" "ours (s)" "ours/POV-Ray"
-for scene in torus whitted-torus barth teapot; do
+# teapot-resultant is teapot.scene with Kajiya's resultant: the same POV-Ray file.
+for scene in torus whitted-torus barth teapot teapot-resultant; do
+    pov=${scene%-resultant}
     t0=$(now)
-    povray +I"$here/pov/$scene.pov" +L"$out" +O"$out/$scene-povray.png" +W"$size" +H"$size" \
+    povray +I"$here/pov/$pov.pov" +L"$out" +O"$out/$scene-povray.png" +W"$size" +H"$size" \
         -A -D +WT"$threads" >"$out/$scene-povray.log" 2>&1 ||
         { echo "povray failed on $scene: see $out/$scene-povray.log" >&2; exit 1; }
     t1=$(now)

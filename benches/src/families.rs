@@ -39,6 +39,11 @@ pub enum Family {
     Clustered,
     /// `(x − 1/2)^k · q(x)`, `k = max(2, ⌊d/3⌋)`, `q` with simple roots `(3j − 1)/(3(d − k))`.
     Multiple,
+    /// Kajiya resultants `Res_v(F1, F2)(u)` of real teapot ray/sub-patch systems, recorded by
+    /// the tracer ([`TEAPOT_ELIMINANTS`]), searched on the piece's `u`-range: the bicubic-patch
+    /// eliminants of the suite (degree 8–17; many carry an exact factor `u³` from a collapsed
+    /// patch edge).
+    TeapotEliminant,
     /// The torus (`R = 2`, `r = 1`) restricted to rays at the eye (camera distance `D`).
     TorusEye,
     /// The same rays restricted at the bounding-sphere entry, as `render` does.
@@ -51,7 +56,7 @@ pub enum Family {
 
 impl Family {
     /// The polynomial families, indexed by degree.
-    pub const BY_DEGREE: [Family; 8] = [
+    pub const BY_DEGREE: [Family; 9] = [
         Family::Wilkinson,
         Family::ScaledWilkinson,
         Family::Chebyshev,
@@ -60,6 +65,7 @@ impl Family {
         Family::Kac,
         Family::Clustered,
         Family::Multiple,
+        Family::TeapotEliminant,
     ];
 
     /// The ray families, indexed by camera distance.
@@ -81,6 +87,7 @@ impl Family {
             Family::Kac => "kac",
             Family::Clustered => "clustered",
             Family::Multiple => "multiple",
+            Family::TeapotEliminant => "teapot-eliminant",
             Family::TorusEye => "torus-eye",
             Family::TorusEntry => "torus-entry",
             Family::BarthEye => "barth-eye",
@@ -99,6 +106,9 @@ impl Family {
             Family::Kac => "Kac: N(0, 1) coefficients",
             Family::Clustered => "clustered (Mignotte-like) x^d − 2(10x − 1)²",
             Family::Multiple => "multiple root (x − 1/2)^k·q(x), k = max(2, ⌊d/3⌋)",
+            Family::TeapotEliminant => {
+                "teapot ray/sub-patch resultants Res_v(F1, F2)(u), recorded by the tracer"
+            }
             Family::TorusEye => "torus R=2, r=1, rays restricted at the eye",
             Family::TorusEntry => "torus R=2, r=1, rays restricted at the bounding-sphere entry",
             Family::BarthEye => "Barth sextic, rays restricted at the eye",
@@ -113,7 +123,10 @@ impl Family {
 
     /// Whether the family is random (several seeded samples per degree).
     pub fn is_random(self) -> bool {
-        matches!(self, Family::Planted | Family::Kac) || self.is_ray()
+        matches!(
+            self,
+            Family::Planted | Family::Kac | Family::TeapotEliminant
+        ) || self.is_ray()
     }
 }
 
@@ -198,6 +211,37 @@ fn case(family: Family, param: f64, exact: QPoly) -> Case {
     }
 }
 
+/// The tracer's recorded root queries (`crates/poly/tests/data/teapot_eliminants.txt`, whose
+/// header says how they were made): lines `TAG lo hi x_tol n c0 … cn`.
+pub const TEAPOT_ELIMINANTS: &str =
+    include_str!("../../crates/poly/tests/data/teapot_eliminants.txt");
+
+/// The recorded eliminants (tag `E`) of degree `d`, each on its recorded range.
+fn teapot_eliminants(d: usize) -> Vec<Case> {
+    TEAPOT_ELIMINANTS
+        .lines()
+        .filter_map(|line| {
+            let mut fields = line.split_whitespace();
+            if fields.next() != Some("E") {
+                return None;
+            }
+            let nums: Vec<f64> = fields
+                .map(|x| x.parse().expect("fixture numbers"))
+                .collect();
+            let (lo, hi) = (nums[0], nums[1]);
+            let poly = Poly::new(nums[4..].to_vec());
+            (poly.degree() == d).then_some(Case {
+                family: Family::TeapotEliminant,
+                param: d as f64,
+                poly,
+                lo,
+                hi,
+                exact: None,
+            })
+        })
+        .collect()
+}
+
 /// The cases of a degree-indexed family at degree `d` (`samples` draws for random families).
 pub fn degree_cases(family: Family, d: usize, samples: usize, seed: u64) -> Vec<Case> {
     let param = d as f64;
@@ -212,6 +256,7 @@ pub fn degree_cases(family: Family, d: usize, samples: usize, seed: u64) -> Vec<
         Family::Legendre => vec![case(family, param, legendre(d as u32))],
         Family::Clustered => vec![case(family, param, mignotte(d, MIGNOTTE_A))],
         Family::Multiple => vec![case(family, param, multiple_root(d))],
+        Family::TeapotEliminant => teapot_eliminants(d),
         Family::Planted => (0..samples)
             .map(|_| {
                 let roots: Vec<Rat> = (0..d)
@@ -309,6 +354,23 @@ mod tests {
         assert_eq!(q.eval(&rat(1, 2)), rat(0, 1), "1/2 is a root");
         let dq = q.derivative().derivative();
         assert_eq!(dq.eval(&rat(1, 2)), rat(0, 1), "of multiplicity at least 3");
+        // The recorded teapot eliminants cover the degrees the tracer met, on [0, 1] widened.
+        let recorded: usize = (2..=18)
+            .map(|d| {
+                let cases = degree_cases(Family::TeapotEliminant, d, 1, 0);
+                assert!(
+                    cases
+                        .iter()
+                        .all(|c| c.poly.degree() == d && c.lo < 0.0 && c.hi > 1.0)
+                );
+                cases.len()
+            })
+            .sum();
+        assert!(recorded > 100, "{recorded} recorded eliminants");
+        assert!(
+            !degree_cases(Family::TeapotEliminant, 17, 1, 0).is_empty(),
+            "degree 17"
+        );
         let cases = degree_cases(Family::Planted, 5, 3, 7);
         assert_eq!(cases.len(), 3, "three samples");
         assert!(

@@ -371,10 +371,13 @@ fn markdown(args: &Args, cmd: &str, rows: &[Row], elapsed: Duration) -> String {
         md,
         "### When the certified `f64` path needs exact arithmetic\n\n\
          `bernstein+*` never returns a wrong count because, when the rounding-error bound \
-         cannot certify a sign, it redoes the query in exact rationals: correct, but as slow \
-         as `exact-sturm`. This happens for roots on a dyadic subdivision point (integer or \
-         half-integer roots, a root at 0 in a symmetric range), multiple and clustered roots, \
-         and at high degree. Parameters at which `{}` fell back at least once:\n",
+         cannot certify a sign, it first restarts the undecided piece with a fresh bound and \
+         non-dyadic splits, and only what `f64` still cannot decide is isolated by exact Sturm \
+         on that piece (an exact factor `x^k` is divided out first): correct, and slow only \
+         there. This happens for multiple roots, clusters closer than the `f64` noise, and at \
+         high degree. *fallbacks* counts these exact pieces and the refinements finished in \
+         exact arithmetic, so it can exceed the number of cases. Parameters at which `{}` \
+         fell back at least once:\n",
         names[default_mi]
     );
     let fb_rows: Vec<Vec<String>> = fams
@@ -551,6 +554,9 @@ fn main() -> Result<()> {
         for d in 2..=args.max_degree as usize {
             let samples = if f.is_random() { args.samples } else { 1 };
             let cases = degree_cases(f, d, samples, args.seed);
+            if cases.is_empty() {
+                continue; // recorded families hold only the degrees the tracer met
+            }
             let t = Instant::now();
             let (scores, construction) = run_cases(&cases, budget);
             let _ = writeln!(
