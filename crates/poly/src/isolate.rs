@@ -268,14 +268,7 @@ impl Poly<f64> {
         opts: &RootOptions,
         stats: &mut RootStats,
     ) -> Result<Vec<RootInterval<f64>>, RootError> {
-        stats.count_query(self.degree());
-        let ivs = self.isolate_roots_inner(a, b, opts, stats);
-        match &ivs {
-            Err(_) => stats.rejected += 1,
-            Ok(i) if !i.is_empty() => stats.with_root += 1,
-            Ok(_) => {}
-        }
-        ivs
+        stats.record_all(self.degree(), |s| self.isolate_roots_inner(a, b, opts, s))
     }
 
     fn isolate_roots_inner(
@@ -347,14 +340,7 @@ impl Poly<f64> {
         opts: &RootOptions,
         stats: &mut RootStats,
     ) -> Result<Vec<f64>, RootError> {
-        stats.count_query(self.degree());
-        let roots = self.real_roots_inner(a, b, opts, stats);
-        match &roots {
-            Err(_) => stats.rejected += 1,
-            Ok(r) if !r.is_empty() => stats.with_root += 1,
-            Ok(_) => {}
-        }
-        roots
+        stats.record_all(self.degree(), |s| self.real_roots_inner(a, b, opts, s))
     }
 
     fn real_roots_inner(

@@ -79,6 +79,23 @@ impl RootStats {
         self.queries += 1;
         self.by_degree[degree.min(STATS_DEGREES - 1)] += 1;
     }
+
+    /// Runs one all-roots query of a polynomial of degree `degree` and records it: counted,
+    /// refused, or with at least one root.
+    pub(crate) fn record_all<V, E>(
+        &mut self,
+        degree: usize,
+        query: impl FnOnce(&mut RootStats) -> Result<Vec<V>, E>,
+    ) -> Result<Vec<V>, E> {
+        self.count_query(degree);
+        let result = query(self);
+        match &result {
+            Err(_) => self.rejected += 1,
+            Ok(found) if !found.is_empty() => self.with_root += 1,
+            Ok(_) => {}
+        }
+        result
+    }
 }
 
 impl AddAssign<&RootStats> for RootStats {
