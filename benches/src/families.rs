@@ -216,8 +216,8 @@ fn case(family: Family, param: f64, exact: QPoly) -> Case {
 pub const TEAPOT_ELIMINANTS: &str =
     include_str!("../../crates/poly/tests/data/teapot_eliminants.txt");
 
-/// The recorded eliminants (tag `E`) of degree `d`, each on its recorded range.
-fn teapot_eliminants(d: usize) -> Vec<Case> {
+/// Every recorded eliminant (tag `E`) with its recorded range `(lo, hi]`, in file order.
+pub fn teapot_eliminant_queries() -> Vec<(Poly<f64>, f64, f64)> {
     TEAPOT_ELIMINANTS
         .lines()
         .filter_map(|line| {
@@ -228,16 +228,23 @@ fn teapot_eliminants(d: usize) -> Vec<Case> {
             let nums: Vec<f64> = fields
                 .map(|x| x.parse().expect("fixture numbers"))
                 .collect();
-            let (lo, hi) = (nums[0], nums[1]);
-            let poly = Poly::new(nums[4..].to_vec());
-            (poly.degree() == d).then_some(Case {
-                family: Family::TeapotEliminant,
-                param: d as f64,
-                poly,
-                lo,
-                hi,
-                exact: None,
-            })
+            Some((Poly::new(nums[4..].to_vec()), nums[0], nums[1]))
+        })
+        .collect()
+}
+
+/// The recorded eliminants of degree `d`, each on its recorded range.
+fn teapot_eliminants(d: usize) -> Vec<Case> {
+    teapot_eliminant_queries()
+        .into_iter()
+        .filter(|(poly, _, _)| poly.degree() == d)
+        .map(|(poly, lo, hi)| Case {
+            family: Family::TeapotEliminant,
+            param: d as f64,
+            poly,
+            lo,
+            hi,
+            exact: None,
         })
         .collect()
 }

@@ -1,6 +1,7 @@
 //! Run time against error at the solver level: every refinement method and tolerance
-//! 1e-2 … 1e-14 on a corpus of real ray polynomials (torus and Barth's sextic, restricted at
-//! the bounding-volume entry as `render` does), scored against the certified smallest root.
+//! 1e-2 … 1e-14 on corpora of real ray polynomials (torus and Barth's sextic, restricted at
+//! the bounding-volume entry as `render` does; the teapot's recorded ray/patch resultants),
+//! scored against the certified smallest root.
 //!
 //! Then the image level: per-pixel hits and shadows of torus.scene (also from 1000× farther)
 //! and barth.scene for each solver setting against an exact reference
@@ -20,6 +21,7 @@ use poly::{Rat, RefineMethod, RootStats, rat_from_f64};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use render::scene::{CameraSpec, LookAtCamera};
+use toolkit_benches::families::teapot_eliminant_queries;
 use toolkit_benches::image::{
     ImageScene, Origin, SHADOW_EPS_REL, SHADOW_EPS_TOLS, Setting, Shape, diff, trace_image,
 };
@@ -355,6 +357,20 @@ fn main() -> Result<()> {
             "barth.scene's sextic from its camera, restricted at the bounding-box entry (sextics)",
             rays::barth_rays(&rays::barth_sextic(), barth_dist, args.rays, true, &mut rng),
         ),
+        corpus(
+            "teapot",
+            "the teapot's Kajiya resultants Res_v(F1, F2)(u), degree 8–17, recorded by the tracer (crates/poly/tests/data/teapot_eliminants.txt), smallest root in the piece's u-range",
+            teapot_eliminant_queries()
+                .into_iter()
+                .take(args.rays)
+                .map(|(poly, lo, hi)| RayPoly {
+                    poly,
+                    lo,
+                    hi,
+                    exact: None,
+                })
+                .collect(),
+        ),
     ];
     let budget = Duration::from_millis(args.budget_ms);
     let mut err = std::io::stderr().lock();
@@ -503,8 +519,8 @@ fn main() -> Result<()> {
     grid_svg(
         &args.out_dir.join("speed-pareto.svg"),
         &panels,
-        2,
-        (1500, 560),
+        3,
+        (2100, 560),
     )?;
     let mut out = std::io::stdout().lock();
     writeln!(out, "wrote {}", path.display())?;
