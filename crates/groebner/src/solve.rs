@@ -10,7 +10,7 @@ use crate::buchberger::{buchberger_tracked, reduce_tracked_keep};
 use crate::error::Error;
 use crate::resultant::{bezout_resultant_v, sylvester_resultant_v};
 use crate::roots::SolveScalar;
-use crate::stam::{stam_tracked, stam_tracked_until};
+use crate::stam::stam_tracked_until;
 use crate::tracked::Tracked;
 
 /// Default [`SolveOptions::x_tol`]: roots are located to `1e-10` in `u` and `v` (a Bézier
@@ -410,21 +410,7 @@ fn eliminate_groebner<T: SolveScalar>(
     if !T::EXACT {
         return eliminate_groebner_f64(f1, f2, method, boxes, x_tol, stats);
     }
-    let (t1, t2) = (Tracked::new(f1.clone()), Tracked::new(f2.clone()));
-    let mut tracked = match method {
-        Method::Stam => stam_tracked(t1, t2)?,
-        _ => reduce_tracked_keep(buchberger_tracked(vec![t1, t2])?),
-    };
-    let as_basis = |t: &[Tracked<T>]| Basis::new(t.iter().map(|t| t.poly.clone()).collect());
-    let mut basis = as_basis(&tracked);
-    if !basis.contains_unit() && basis.univariate_u().is_none() {
-        // Stam's loop is not proven to give a Gröbner basis: complete it before concluding
-        // that the roots are not finite (Theorem 3 needs a Gröbner basis). The error bounds
-        // are carried over.
-        tracked.retain(|t| !t.is_zero());
-        tracked = reduce_tracked_keep(buchberger_tracked(tracked)?);
-        basis = as_basis(&tracked);
-    }
+    let (_, basis) = tracked_basis(f1, f2, method, |_| false)?.expect("never abandoned");
     stats.basis_size = basis.len();
     stats.coeff_bits = basis.elements().iter().filter_map(T::coeff_bits).max();
     stats.v_degree = basis.v_elements().first().map_or(0, |g| g.deg_v());
@@ -448,6 +434,38 @@ fn eliminate_groebner<T: SolveScalar>(
     })
 }
 
+/// A basis with its error-tracked elements, and the same basis untracked.
+type TrackedBasis<T> = (Vec<Tracked<T>>, Basis<T>);
+
+/// The tracked basis of `F1`, `F2` by `method` — Stam's loop, abandoned (`Ok(None)`) as soon
+/// as `abort` holds for a new element, or Buchberger's reduced basis — and the same basis
+/// untracked. Stam's loop is not proven to give a Gröbner basis, so a list with neither a
+/// unit nor a univariate element is completed by Buchberger before anyone concludes that the
+/// roots are not finite (Theorem 3 needs a Gröbner basis); the error bounds are carried over.
+fn tracked_basis<T: SolveScalar>(
+    f1: &BiPoly<T>,
+    f2: &BiPoly<T>,
+    method: Method,
+    abort: impl Fn(&Tracked<T>) -> bool,
+) -> Result<Option<TrackedBasis<T>>, Error> {
+    let (t1, t2) = (Tracked::new(f1.clone()), Tracked::new(f2.clone()));
+    let mut tracked = match method {
+        Method::Stam => match stam_tracked_until(t1, t2, abort)? {
+            Some(g) => g,
+            None => return Ok(None),
+        },
+        _ => reduce_tracked_keep(buchberger_tracked(vec![t1, t2])?),
+    };
+    let as_basis = |t: &[Tracked<T>]| Basis::new(t.iter().map(|t| t.poly.clone()).collect());
+    let mut basis = as_basis(&tracked);
+    if !basis.contains_unit() && basis.univariate_u().is_none() {
+        tracked.retain(|t| !t.is_zero());
+        tracked = reduce_tracked_keep(buchberger_tracked(tracked)?);
+        basis = as_basis(&tracked);
+    }
+    Ok(Some((tracked, basis)))
+}
+
 /// The `f64` Gröbner path: the basis, then [`certify_f64`]. A Stam run is abandoned as soon as
 /// a new element is pure noise on the box ([`Tracked::is_noise`]), and a run that exceeds its
 /// limits falls back like an uncertified one (neither says anything about the roots).
@@ -462,27 +480,11 @@ fn eliminate_groebner_f64<T: SolveScalar>(
     let [ub, vb] = boxes;
     let um = T::from_f64(ub[0].abs().max(ub[1].abs())).expect("finite");
     let vm = T::from_f64(vb[0].abs().max(vb[1].abs())).expect("finite");
-    let (t1, t2) = (Tracked::new(f1.clone()), Tracked::new(f2.clone()));
-    let run = match method {
-        Method::Stam => stam_tracked_until(t1, t2, |t| t.is_noise(&um, &vm)),
-        _ => buchberger_tracked(vec![t1, t2]).map(|g| Some(reduce_tracked_keep(g))),
-    };
-    let mut tracked = match run {
-        Ok(Some(g)) => g,
+    let (tracked, basis) = match tracked_basis(f1, f2, method, |t| t.is_noise(&um, &vm)) {
+        Ok(Some(found)) => found,
         Ok(None) | Err(Error::LimitExceeded { .. }) => return fallback(f1, f2, stats),
         Err(e) => return Err(e),
     };
-    let mut basis = Basis::new(tracked.iter().map(|t| t.poly.clone()).collect());
-    if !basis.contains_unit() && basis.univariate_u().is_none() {
-        // As in exact mode, complete Stam's list before giving up on it.
-        tracked.retain(|t| !t.is_zero());
-        tracked = match buchberger_tracked(tracked) {
-            Ok(g) => reduce_tracked_keep(g),
-            Err(Error::LimitExceeded { .. }) => return fallback(f1, f2, stats),
-            Err(e) => return Err(e),
-        };
-        basis = Basis::new(tracked.iter().map(|t| t.poly.clone()).collect());
-    }
     stats.basis_size = basis.len();
     stats.v_degree = basis.v_elements().first().map_or(0, |g| g.deg_v());
     certify_f64(f1, f2, &tracked, &basis, boxes, x_tol, stats)

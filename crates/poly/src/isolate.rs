@@ -76,6 +76,27 @@ fn prepare(p: &Poly<f64>, t_min: f64, t_max: f64, x_tol: f64) -> Result<Range, R
     Ok(Range::Search { lo, hi })
 }
 
+/// Every root in `(lo, hi]` of `p = x^k·q` (`q(0) ≠ 0`): those of `q` below and above 0
+/// (`side` answers one sub-range), with the root 0 itself (`zero`) between them when it lies
+/// in the range. One query for the statistics: at most one exact fallback, though each side
+/// may have needed one.
+fn around_zero<V>(
+    q: &Poly<f64>,
+    (lo, hi): (f64, f64),
+    zero: V,
+    stats: &mut RootStats,
+    mut side: impl FnMut(&Poly<f64>, f64, f64, &mut RootStats) -> Result<Vec<V>, RootError>,
+) -> Result<Vec<V>, RootError> {
+    let fallbacks = stats.exact_fallbacks;
+    let mut out = side(q, lo, hi.min(0.0), stats)?;
+    if lo < 0.0 && 0.0 <= hi {
+        out.push(zero);
+    }
+    out.extend(side(q, lo.max(0.0), hi, stats)?);
+    stats.exact_fallbacks = stats.exact_fallbacks.min(fallbacks + 1);
+    Ok(out)
+}
+
 /// `q = p/x^k` when the default certified method runs and the `k ≥ 1` lowest coefficients of
 /// `p` are exactly zero, so that `p = x^k·q` with `q(0) ≠ 0`, exactly.
 ///
@@ -279,15 +300,10 @@ impl Poly<f64> {
         stats: &mut RootStats,
     ) -> Result<Vec<RootInterval<f64>>, RootError> {
         if let Some((q, lo, hi)) = zero_root_split(self, a, b, opts)? {
-            let fallbacks = stats.exact_fallbacks;
-            let mut out = q.isolate_roots_inner(lo, hi.min(0.0), opts, stats)?;
-            if lo < 0.0 && 0.0 <= hi {
-                out.push(RootInterval { lo: 0.0, hi: 0.0 });
-            }
-            out.extend(q.isolate_roots_inner(lo.max(0.0), hi, opts, stats)?);
-            // One query: at most one exact fallback, though each side may have needed one.
-            stats.exact_fallbacks = stats.exact_fallbacks.min(fallbacks + 1);
-            return Ok(out);
+            let zero = RootInterval { lo: 0.0, hi: 0.0 };
+            return around_zero(&q, (lo, hi), zero, stats, |q, lo, hi, s| {
+                q.isolate_roots_inner(lo, hi, opts, s)
+            });
         }
         Ok(match self.isolate_inner(a, b, opts, stats)? {
             Isolation::Certified(search) => search
@@ -351,15 +367,9 @@ impl Poly<f64> {
         stats: &mut RootStats,
     ) -> Result<Vec<f64>, RootError> {
         if let Some((q, lo, hi)) = zero_root_split(self, a, b, opts)? {
-            let fallbacks = stats.exact_fallbacks;
-            let mut out = q.real_roots_inner(lo, hi.min(0.0), opts, stats)?;
-            if lo < 0.0 && 0.0 <= hi {
-                out.push(0.0);
-            }
-            out.extend(q.real_roots_inner(lo.max(0.0), hi, opts, stats)?);
-            // One query: at most one exact fallback, though each side may have needed one.
-            stats.exact_fallbacks = stats.exact_fallbacks.min(fallbacks + 1);
-            return Ok(out);
+            return around_zero(&q, (lo, hi), 0.0, stats, |q, lo, hi, s| {
+                q.real_roots_inner(lo, hi, opts, s)
+            });
         }
         let roots: Vec<f64> = match self.isolate_inner(a, b, opts, stats)? {
             Isolation::Certified(search) => search

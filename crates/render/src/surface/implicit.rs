@@ -97,15 +97,13 @@ impl<F: ImplicitFn> Implicit<F> {
 
     /// Clips the surface to the sphere of centre `c` and radius `r` (in the shape's
     /// coordinates), and tightens the bounding box to the sphere's.
-    pub fn with_clip_sphere(self, c: DVec3, r: f64) -> Self {
-        let sphere_box = Bounds3::new(c - DVec3::splat(r), c + DVec3::splat(r));
-        let mut s = Implicit::new(self.f, Some(sphere_box));
-        if let Some(b) = self.bounds {
-            s.bounds = s.bounds.map(|sb| sb.intersection(&b));
-            s.diagonal = s.bounds.map_or(0.0, |b| b.diagonal());
-        }
-        s.clip_sphere = Some((c, r));
-        s
+    pub fn with_clip_sphere(mut self, c: DVec3, r: f64) -> Self {
+        let ball = Bounds3::new(c - DVec3::splat(r), c + DVec3::splat(r));
+        let bounds = self.bounds.map_or(ball, |b| b.intersection(&ball));
+        self.bounds = Some(bounds);
+        self.diagonal = bounds.diagonal();
+        self.clip_sphere = Some((c, r));
+        self
     }
 
     /// The wrapped function.
