@@ -10,6 +10,8 @@
 //! polynomial, on that piece (counted in [`RootStats::exact_fallbacks`]; `certified.rs`).
 //! See `paper-notes/isolation.md`.
 
+use std::cell::Cell;
+
 use crate::bernstein::Bracket;
 use crate::certified::{CertifiedSearch, Found, exact_isolate};
 use crate::closed_form::{linear_smallest, quadratic_smallest};
@@ -76,29 +78,30 @@ fn prepare(p: &Poly<f64>, t_min: f64, t_max: f64, x_tol: f64) -> Result<Range, R
     Ok(Range::Search { lo, hi })
 }
 
-/// Every root in `(lo, hi]` of `p = x^k·q` (`q(0) ≠ 0`): those of `q` below and above 0
-/// (`side` answers one sub-range), with the root 0 itself (`zero`) between them when it lies
-/// in the range. One query for the statistics: at most one exact fallback, though each side
-/// may have needed one.
+/// Every root in `(lo, hi]` of `p = x^k·q` (`q(0) ≠ 0`), appended to `out` in order: those
+/// of `q` below 0 (`side` answers one sub-range), the root 0 itself (`zero`) when it lies in
+/// the range, then those of `q` above 0. One query for the statistics: at most one exact
+/// fallback, though each side may have needed one.
 fn around_zero<V>(
     q: &Poly<f64>,
     (lo, hi): (f64, f64),
     zero: V,
     stats: &mut RootStats,
-    mut side: impl FnMut(&Poly<f64>, f64, f64, &mut RootStats) -> Result<Vec<V>, RootError>,
-) -> Result<Vec<V>, RootError> {
+    out: &mut Vec<V>,
+    mut side: impl FnMut(&Poly<f64>, f64, f64, &mut RootStats, &mut Vec<V>) -> Result<(), RootError>,
+) -> Result<(), RootError> {
     let fallbacks = stats.exact_fallbacks;
-    let mut out = side(q, lo, hi.min(0.0), stats)?;
+    side(q, lo, hi.min(0.0), stats, out)?;
     if lo < 0.0 && 0.0 <= hi {
         out.push(zero);
     }
-    out.extend(side(q, lo.max(0.0), hi, stats)?);
+    side(q, lo.max(0.0), hi, stats, out)?;
     stats.exact_fallbacks = stats.exact_fallbacks.min(fallbacks + 1);
-    Ok(out)
+    Ok(())
 }
 
-/// `q = p/x^k` when the default certified method runs and the `k ≥ 1` lowest coefficients of
-/// `p` are exactly zero, so that `p = x^k·q` with `q(0) ≠ 0`, exactly.
+/// The order `k ≥ 1` of the root 0 when the default certified method runs and the `k` lowest
+/// coefficients of `p` are exactly zero, so that `p = x^k·q` with `q(0) ≠ 0`, exactly; else 0.
 ///
 /// Why: the `k`-fold root at 0 is a multiple root, which Descartes' rule can never isolate
 /// (every node around it keeps sign changes), so the query used to end in the exact
@@ -106,24 +109,43 @@ fn around_zero<V>(
 /// to a point (the teapot's lid apex and bottom): measured on the teapot corpus, every exact
 /// fallback was such a factor (`paper-notes/isolation.md`). Dividing by `x^k` is exact, so
 /// the answer stays that of the stored polynomial.
-fn zero_root_quotient(p: &Poly<f64>, opts: &RootOptions) -> Option<Poly<f64>> {
+fn zero_root_order(p: &Poly<f64>, opts: &RootOptions) -> usize {
     if opts.isolation != IsolationMethod::Bernstein {
-        return None;
+        return 0;
     }
     let k = p.coeffs().iter().take_while(|c| **c == 0.0).count();
-    (k > 0 && k < p.coeffs().len()).then(|| Poly::new(p.coeffs()[k..].to_vec()))
+    if k < p.coeffs().len() { k } else { 0 }
 }
 
-/// For the all-roots queries: validates `(a, b]` and, when [`zero_root_quotient`] applies
-/// and the range is not empty, returns `q` with the narrowed range. The caller then answers
-/// `q` on `(lo, min(hi, 0)]`, adds the root 0 when `lo < 0 ≤ hi`, and answers `q` on
-/// `(max(lo, 0), hi]` — sorted and disjoint since `q(0) ≠ 0`.
+thread_local! {
+    /// The coefficients of the last quotient `p/x^k` built on this thread, kept for the next
+    /// one: the tracer's per-ray queries then allocate nothing after the first.
+    static QUOTIENT: Cell<Vec<f64>> = const { Cell::new(Vec::new()) };
+}
+
+/// Runs `f` on `q = p/x^k` (the coefficients of `p` from index `k` on), built in a per-thread
+/// buffer that is reused across queries.
+fn with_quotient<R>(p: &Poly<f64>, k: usize, f: impl FnOnce(&Poly<f64>) -> R) -> R {
+    let mut buf = QUOTIENT.take();
+    buf.clear();
+    buf.extend_from_slice(&p.coeffs()[k..]);
+    let q = Poly::new(buf);
+    let r = f(&q);
+    QUOTIENT.set(q.into_coeffs());
+    r
+}
+
+/// For the all-roots queries: validates `(a, b]` and, when [`zero_root_order`] is `k ≥ 1`
+/// and the range is not empty, returns `k` with the narrowed range. The caller then answers
+/// `q = p/x^k` ([`with_quotient`]) on `(lo, min(hi, 0)]`, adds the root 0 when
+/// `lo < 0 ≤ hi`, and answers `q` on `(max(lo, 0), hi]` — sorted and disjoint since
+/// `q(0) ≠ 0`.
 fn zero_root_split(
     p: &Poly<f64>,
     a: f64,
     b: f64,
     opts: &RootOptions,
-) -> Result<Option<(Poly<f64>, f64, f64)>, RootError> {
+) -> Result<Option<(usize, f64, f64)>, RootError> {
     if p.coeffs().first() != Some(&0.0) {
         // The common case, without validating twice (the caller's path validates).
         return Ok(None);
@@ -131,7 +153,8 @@ fn zero_root_split(
     let Range::Search { lo, hi } = prepare(p, a, b, opts.x_tol)? else {
         return Ok(None);
     };
-    Ok(zero_root_quotient(p, opts).map(|q| (q, lo, hi)))
+    let k = zero_root_order(p, opts);
+    Ok((k > 0).then_some((k, lo, hi)))
 }
 
 impl Poly<f64> {
@@ -228,12 +251,15 @@ impl Poly<f64> {
             Range::Empty => return Ok(None),
             Range::Search { lo, hi } => (lo, hi),
         };
-        if let Some(q) = zero_root_quotient(self, opts) {
+        let k = zero_root_order(self, opts);
+        if k > 0 {
             // p = x^k·q exactly: the roots are 0 and those of q, and q(0) ≠ 0.
-            return Ok(if lo < 0.0 && 0.0 <= hi {
-                q.smallest_root_inner(lo, 0.0, opts, stats)?.or(Some(0.0))
-            } else {
-                q.smallest_root_inner(lo, hi, opts, stats)?
+            return with_quotient(self, k, |q| {
+                Ok(if lo < 0.0 && 0.0 <= hi {
+                    q.smallest_root_inner(lo, 0.0, opts, stats)?.or(Some(0.0))
+                } else {
+                    q.smallest_root_inner(lo, hi, opts, stats)?
+                })
             });
         }
         Ok(match opts.isolation {
@@ -289,33 +315,41 @@ impl Poly<f64> {
         opts: &RootOptions,
         stats: &mut RootStats,
     ) -> Result<Vec<RootInterval<f64>>, RootError> {
-        stats.record_all(self.degree(), |s| self.isolate_roots_inner(a, b, opts, s))
+        let mut out = Vec::new();
+        stats.record_all(self.degree(), |s| {
+            self.isolate_roots_push(a, b, opts, s, &mut out)?;
+            Ok(out.len())
+        })?;
+        Ok(out)
     }
 
-    fn isolate_roots_inner(
+    /// Appends the isolating intervals of the roots in `(a, b]` to `out`.
+    fn isolate_roots_push(
         &self,
         a: f64,
         b: f64,
         opts: &RootOptions,
         stats: &mut RootStats,
-    ) -> Result<Vec<RootInterval<f64>>, RootError> {
-        if let Some((q, lo, hi)) = zero_root_split(self, a, b, opts)? {
+        out: &mut Vec<RootInterval<f64>>,
+    ) -> Result<(), RootError> {
+        if let Some((k, lo, hi)) = zero_root_split(self, a, b, opts)? {
             let zero = RootInterval { lo: 0.0, hi: 0.0 };
-            return around_zero(&q, (lo, hi), zero, stats, |q, lo, hi, s| {
-                q.isolate_roots_inner(lo, hi, opts, s)
+            return with_quotient(self, k, |q| {
+                around_zero(q, (lo, hi), zero, stats, out, |q, lo, hi, s, out| {
+                    q.isolate_roots_push(lo, hi, opts, s, out)
+                })
             });
         }
-        Ok(match self.isolate_inner(a, b, opts, stats)? {
-            Isolation::Certified(search) => search
-                .found
-                .into_iter()
-                .map(|f| match f {
+        match self.isolate_inner(a, b, opts, stats)? {
+            Isolation::Certified(search) => {
+                out.extend(search.found.into_iter().map(|f| match f {
                     Found::Bracket(b) => RootInterval { lo: b.lo, hi: b.hi },
                     Found::Exact(iv) => iv,
-                })
-                .collect(),
-            Isolation::Exact(_, ivs) | Isolation::Heuristic(ivs) => ivs,
-        })
+                }));
+            }
+            Isolation::Exact(_, ivs) | Isolation::Heuristic(ivs) => out.extend(ivs),
+        }
+        Ok(())
     }
 
     /// Every distinct real root in `(a, b]`, sorted, each within `x_tol`, by the default
@@ -356,37 +390,88 @@ impl Poly<f64> {
         opts: &RootOptions,
         stats: &mut RootStats,
     ) -> Result<Vec<f64>, RootError> {
-        stats.record_all(self.degree(), |s| self.real_roots_inner(a, b, opts, s))
+        let mut out = Vec::new();
+        self.real_roots_into(a, b, opts, stats, &mut out)?;
+        Ok(out)
     }
 
-    fn real_roots_inner(
+    /// [`real_roots_with`](Poly::real_roots_with) into a caller's buffer: the roots are
+    /// appended to `out` (sorted among themselves; `out` is not cleared). With a buffer reused
+    /// across queries, the default certified path allocates nothing once the buffer (and this
+    /// thread's scratch for an exact `x^k` factor) has grown to size — what the ray tracer's
+    /// per-ray algebra needs. The exact fallback, when a query needs it
+    /// ([`RootStats::exact_fallbacks`]), does allocate.
+    ///
+    /// # Accuracy
+    /// As [`real_roots`](Poly::real_roots).
+    ///
+    /// # Errors
+    /// As [`try_smallest_root`](Poly::try_smallest_root); on an error `out` is left as it was.
+    ///
+    /// # Examples
+    /// ```
+    /// use poly::{Poly, RootOptions, RootStats};
+    /// let mut roots = Vec::with_capacity(8);
+    /// let mut stats = RootStats::default();
+    /// let p = Poly::new(vec![0.0, 0.0, -2.0, 0.0, 1.0]); // x²(x² − 2)
+    /// p.real_roots_into(-2.0, 2.0, &RootOptions::new(1e-14), &mut stats, &mut roots)?;
+    /// assert_eq!(roots.len(), 3);
+    /// assert_eq!(roots[1], 0.0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn real_roots_into(
         &self,
         a: f64,
         b: f64,
         opts: &RootOptions,
         stats: &mut RootStats,
-    ) -> Result<Vec<f64>, RootError> {
-        if let Some((q, lo, hi)) = zero_root_split(self, a, b, opts)? {
-            return around_zero(&q, (lo, hi), 0.0, stats, |q, lo, hi, s| {
-                q.real_roots_inner(lo, hi, opts, s)
+        out: &mut Vec<f64>,
+    ) -> Result<(), RootError> {
+        let before = out.len();
+        let found = stats.record_all(self.degree(), |s| {
+            self.real_roots_push(a, b, opts, s, out)?;
+            Ok(out.len() - before)
+        });
+        if found.is_err() {
+            out.truncate(before);
+        }
+        found.map(|_| ())
+    }
+
+    fn real_roots_push(
+        &self,
+        a: f64,
+        b: f64,
+        opts: &RootOptions,
+        stats: &mut RootStats,
+        out: &mut Vec<f64>,
+    ) -> Result<(), RootError> {
+        if let Some((k, lo, hi)) = zero_root_split(self, a, b, opts)? {
+            return with_quotient(self, k, |q| {
+                around_zero(q, (lo, hi), 0.0, stats, out, |q, lo, hi, s, out| {
+                    q.real_roots_push(lo, hi, opts, s, out)
+                })
             });
         }
-        let roots: Vec<f64> = match self.isolate_inner(a, b, opts, stats)? {
-            Isolation::Certified(search) => search
-                .found
-                .iter()
-                .map(|f| refine_found(self, &search, f, opts, stats))
-                .collect(),
-            Isolation::Exact(seq, ivs) => ivs
-                .iter()
-                .map(|iv| refine_exact_interval(&seq, iv, opts.x_tol))
-                .collect(),
-            Isolation::Heuristic(ivs) => ivs
-                .iter()
-                .map(|iv| refine_heuristic(self, iv, opts, stats))
-                .collect(),
-        };
-        Ok(roots)
+        match self.isolate_inner(a, b, opts, stats)? {
+            Isolation::Certified(search) => {
+                for f in &search.found {
+                    out.push(refine_found(self, &search, f, opts, stats));
+                }
+            }
+            Isolation::Exact(seq, ivs) => {
+                out.extend(
+                    ivs.iter()
+                        .map(|iv| refine_exact_interval(&seq, iv, opts.x_tol)),
+                );
+            }
+            Isolation::Heuristic(ivs) => {
+                for iv in &ivs {
+                    out.push(refine_heuristic(self, iv, opts, stats));
+                }
+            }
+        }
+        Ok(())
     }
 
     fn isolate_inner(

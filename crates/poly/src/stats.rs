@@ -81,17 +81,17 @@ impl RootStats {
     }
 
     /// Runs one all-roots query of a polynomial of degree `degree` and records it: counted,
-    /// refused, or with at least one root.
-    pub(crate) fn record_all<V, E>(
+    /// refused, or with at least one root. The query returns how many roots it found.
+    pub(crate) fn record_all<E>(
         &mut self,
         degree: usize,
-        query: impl FnOnce(&mut RootStats) -> Result<Vec<V>, E>,
-    ) -> Result<Vec<V>, E> {
+        query: impl FnOnce(&mut RootStats) -> Result<usize, E>,
+    ) -> Result<usize, E> {
         self.count_query(degree);
         let result = query(self);
         match &result {
             Err(_) => self.rejected += 1,
-            Ok(found) if !found.is_empty() => self.with_root += 1,
+            Ok(found) if *found > 0 => self.with_root += 1,
             Ok(_) => {}
         }
         result

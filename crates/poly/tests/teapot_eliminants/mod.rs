@@ -4,42 +4,11 @@
 //! counts on the stored polynomials; and the design assertion that none of them needs the
 //! exact fallback (`paper-notes/isolation.md`, "Teapot eliminants").
 
-use poly::{Poly, QPoly, Rat, RootInterval, RootOptions, RootStats, SturmSequence, rat_from_f64};
+use poly::{QPoly, Rat, RootInterval, RootOptions, RootStats, SturmSequence, rat_from_f64};
 
-/// One recorded query: `p.real_roots(lo, hi, x_tol)`.
-struct Query {
-    tag: char,
-    lo: f64,
-    hi: f64,
-    x_tol: f64,
-    p: Poly<f64>,
-}
+mod corpus;
 
-fn corpus() -> Vec<Query> {
-    let text = include_str!("../data/teapot_eliminants.txt");
-    text.lines()
-        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
-        .map(|l| {
-            let f: Vec<&str> = l.split_whitespace().collect();
-            let num = |s: &str| s.parse::<f64>().expect("a number");
-            let n: usize = f[4].parse().expect("a degree");
-            let c: Vec<f64> = f[5..].iter().map(|s| num(s)).collect();
-            assert_eq!(
-                c.len(),
-                n + 1,
-                "degree {n} needs {} coefficients: {l}",
-                n + 1
-            );
-            Query {
-                tag: f[0].chars().next().expect("a tag"),
-                lo: num(f[1]),
-                hi: num(f[2]),
-                x_tol: num(f[3]),
-                p: Poly::new(c),
-            }
-        })
-        .collect()
-}
+use corpus::{Query, corpus};
 
 fn q(x: f64) -> Rat {
     rat_from_f64(x).expect("finite")
