@@ -77,7 +77,9 @@ fn check_degrees(name: &str, u_degree: usize) {
         let (stats, hits, odd) = trace(&patch, &cam, method, u_degree);
         hit_counts.push(hits);
         assert!(
-            stats.solves > 100 && hits > 40,
+            // (Since the control-hull test rejects by any plane through the ray, nearly every
+            // solve here is a hit: 55-94 solves.)
+            stats.solves > 40 && hits > 40,
             "{name} {method:?}: {hits} hits, {stats}"
         );
         if method == PatchMethod::Resultant {

@@ -44,7 +44,9 @@
 
 mod basis;
 mod buchberger;
+mod dense;
 mod error;
+mod fast;
 mod ray_patch;
 mod reduction;
 mod resultant;
@@ -59,6 +61,7 @@ mod tracked;
 pub use crate::basis::Basis;
 pub use crate::buchberger::{BUCHBERGER_MAX_BASIS, buchberger, is_groebner_basis, reduce_basis};
 pub use crate::error::Error;
+pub use crate::fast::{RayPatchSolution, SolveWorkspace, solve_ray_patch};
 pub use crate::ray_patch::{RayPatchSystem, ray_patch_system};
 pub use crate::reduction::{normal_form, r2, reduction_step, s_polynomial};
 pub use crate::resultant::{

@@ -5,6 +5,7 @@
 use poly::{BiPoly, Scalar};
 
 use crate::error::Error;
+use crate::fast::Small;
 
 /// The system of article §2 eq. 5 for one ray and one patch, and the map back to `t`.
 ///
@@ -85,6 +86,72 @@ pub fn ray_patch_system<T: Scalar>(
             rows,
         });
     }
+    let (k, a, b) = check_and_pivot(points, origin, dir)?;
+    let (f1, f2) = (
+        BiPoly::from_grid(
+            stride,
+            rows,
+            eliminated(points, k, a, origin, dir).collect(),
+        ),
+        BiPoly::from_grid(
+            stride,
+            rows,
+            eliminated(points, k, b, origin, dir).collect(),
+        ),
+    );
+    let s_pivot = BiPoly::from_grid(stride, rows, points.iter().map(|p| p[k].clone()).collect());
+    Ok(RayPatchSystem {
+        f1,
+        f2,
+        pivot: k,
+        s_pivot,
+        origin_pivot: origin[k].clone(),
+        dir_pivot: dir[k].clone(),
+    })
+}
+
+/// [`ray_patch_system`] for a patch of degree ≤ 3 in `u` and `v` over `f64`, in fixed-size
+/// grids (the per-ray path of `fast.rs`); the same coefficients bit for bit. The caller has
+/// checked `points.len() == stride * rows` with `stride, rows ≤ 4`.
+pub(crate) fn ray_patch_small(
+    points: &[[f64; 3]],
+    stride: usize,
+    origin: &[f64; 3],
+    dir: &[f64; 3],
+) -> Result<SmallSystem, Error> {
+    let (k, a, b) = check_and_pivot(points, origin, dir)?;
+    let grid = |it: &mut dyn Iterator<Item = f64>| {
+        let mut c = [0.0; 16];
+        for (idx, x) in it.enumerate() {
+            c[4 * (idx / stride) + idx % stride] = x;
+        }
+        Small { c }
+    };
+    Ok(SmallSystem {
+        f1: grid(&mut eliminated(points, k, a, origin, dir)),
+        f2: grid(&mut eliminated(points, k, b, origin, dir)),
+        s_pivot: grid(&mut points.iter().map(|p| p[k])),
+        origin_pivot: origin[k],
+        dir_pivot: dir[k],
+    })
+}
+
+/// [`RayPatchSystem`] in fixed-size grids (see [`ray_patch_small`]).
+pub(crate) struct SmallSystem {
+    pub(crate) f1: Small,
+    pub(crate) f2: Small,
+    pub(crate) s_pivot: Small,
+    pub(crate) origin_pivot: f64,
+    pub(crate) dir_pivot: f64,
+}
+
+/// Checks the inputs and picks the pivot: `(k, a, b)` with `k` the largest `|D_k|` (first one
+/// on ties) and `a < b` the two other axes.
+fn check_and_pivot<T: Scalar>(
+    points: &[[T; 3]],
+    origin: &[T; 3],
+    dir: &[T; 3],
+) -> Result<(usize, usize, usize), Error> {
     if !T::EXACT {
         let finite = |xs: &[T]| xs.iter().all(|x| x.nearest_f64().is_finite());
         if !points.iter().all(|p| finite(p)) {
@@ -99,7 +166,6 @@ pub fn ray_patch_system<T: Scalar>(
             });
         }
     }
-    // Pivot: the largest |D_k| (first one on ties).
     let mut k = 0;
     for axis in 1..3 {
         if dir[axis].abs() > dir[k].abs() {
@@ -114,29 +180,26 @@ pub fn ray_patch_system<T: Scalar>(
         1 => (0, 2),
         _ => (0, 1),
     };
-    let eliminate = |a: usize| {
-        // D_k·(S_a − O_a) − D_a·(S_k − O_k), coefficient by coefficient.
-        let mut coeffs: Vec<T> = points
-            .iter()
-            .map(|p| cancel(dir[k].clone() * &p[a], dir[a].clone() * &p[k]))
-            .collect();
-        if let Some(c0) = coeffs.first_mut() {
+    Ok((k, a, b))
+}
+
+/// The coefficients of `D_k·(S_a − O_a) − D_a·(S_k − O_k)`, in the order of `points`.
+fn eliminated<'a, T: Scalar>(
+    points: &'a [[T; 3]],
+    k: usize,
+    a: usize,
+    origin: &'a [T; 3],
+    dir: &'a [T; 3],
+) -> impl Iterator<Item = T> + 'a {
+    points.iter().enumerate().map(move |(idx, p)| {
+        if idx == 0 {
             // The constant term also carries −D_k·O_a + D_a·O_k.
-            let x = dir[k].clone() * &points[0][a] + dir[a].clone() * &origin[k];
-            let y = dir[a].clone() * &points[0][k] + dir[k].clone() * &origin[a];
-            *c0 = cancel(x, y);
+            let x = dir[k].clone() * &p[a] + dir[a].clone() * &origin[k];
+            let y = dir[a].clone() * &p[k] + dir[k].clone() * &origin[a];
+            cancel(x, y)
+        } else {
+            cancel(dir[k].clone() * &p[a], dir[a].clone() * &p[k])
         }
-        BiPoly::from_grid(stride, rows, coeffs)
-    };
-    let (f1, f2) = (eliminate(a), eliminate(b));
-    let s_pivot = BiPoly::from_grid(stride, rows, points.iter().map(|p| p[k].clone()).collect());
-    Ok(RayPatchSystem {
-        f1,
-        f2,
-        pivot: k,
-        s_pivot,
-        origin_pivot: origin[k].clone(),
-        dir_pivot: dir[k].clone(),
     })
 }
 

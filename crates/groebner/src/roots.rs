@@ -5,6 +5,9 @@ use num_bigint::{BigInt, Sign};
 use num_traits::{One, Signed, Zero};
 use poly::{BiPoly, Poly, Rat, Scalar};
 
+use crate::error::Error;
+use crate::solve::{Solution, SolveOptions};
+
 mod sealed {
     pub trait Sealed {}
     impl Sealed for f64 {}
@@ -32,6 +35,15 @@ pub trait SolveScalar: Scalar + sealed::Sealed {
     /// `paper-notes/groebner.md` §5), so the `f64` value of the root is not enough even though
     /// the basis is exact.
     fn sharpen_root(p: &Poly<Self>, u: f64, x_tol: f64, bits: u32) -> Option<Self>;
+
+    /// `f64`: [`solve`](crate::solve) on the allocation-free path of `fast.rs` when it applies
+    /// (degree ≤ 3 in `u` and `v`, Stam or Bézout); `None` otherwise and for exact scalars.
+    #[doc(hidden)]
+    fn solve_fast(
+        f1: &BiPoly<Self>,
+        f2: &BiPoly<Self>,
+        opts: &SolveOptions,
+    ) -> Option<Result<Solution, Error>>;
 }
 
 impl SolveScalar for f64 {
@@ -51,9 +63,25 @@ impl SolveScalar for f64 {
     fn sharpen_root(_: &Poly<f64>, _: f64, _: f64, _: u32) -> Option<f64> {
         None
     }
+
+    fn solve_fast(
+        f1: &BiPoly<f64>,
+        f2: &BiPoly<f64>,
+        opts: &SolveOptions,
+    ) -> Option<Result<Solution, Error>> {
+        crate::fast::solve_f64(f1, f2, opts)
+    }
 }
 
 impl SolveScalar for Rat {
+    fn solve_fast(
+        _: &BiPoly<Rat>,
+        _: &BiPoly<Rat>,
+        _: &SolveOptions,
+    ) -> Option<Result<Solution, Error>> {
+        None
+    }
+
     fn real_roots_in(p: &Poly<Rat>, range: [f64; 2], x_tol: f64) -> Vec<f64> {
         if p.degree() == 0 {
             return Vec::new();

@@ -15,7 +15,7 @@ use poly::{BiPoly, Poly, Scalar};
 pub(crate) const SMALL_DEGREE: usize = 3;
 
 /// A polynomial in `u` of degree `< L`, lowest power first.
-type Coeffs<T, const L: usize> = [T; L];
+pub(crate) type Coeffs<T, const L: usize> = [T; L];
 
 fn zeros<T: Scalar, const L: usize>() -> Coeffs<T, L> {
     std::array::from_fn(|_| T::zero())
@@ -65,7 +65,18 @@ pub(crate) fn small_bezout_resultant<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) ->
     if n == 0 || n > SMALL_DEGREE || f.deg_u() > SMALL_DEGREE || g.deg_u() > SMALL_DEGREE {
         return None;
     }
-    let (a, b) = (rows(f), rows(g));
+    Some(Poly::new(small_bezout_det(&rows(f), &rows(g), n).to_vec()))
+}
+
+/// The Bézout resultant `(−1)^{N(N−1)/2} det B` of the polynomials whose coefficients in `v`
+/// are `a` and `b` (each a polynomial in `u`, lowest power first), `N = n ≥ 1` their largest
+/// `v`-degree: 19 coefficients, lowest power first (trailing ones may be zero). No allocation.
+pub(crate) fn small_bezout_det<T: Scalar>(
+    a: &[Coeffs<T, 4>; 4],
+    b: &[Coeffs<T, 4>; 4],
+    n: usize,
+) -> Coeffs<T, 19> {
+    debug_assert!((1..=SMALL_DEGREE).contains(&n), "1 ≤ N ≤ 3");
     // d[p][q] = a_p b_q − a_q b_p for q < p ≤ n (antisymmetric; only these are used).
     let mut d: [[Coeffs<T, 7>; 4]; 4] = std::array::from_fn(|_| std::array::from_fn(|_| zeros()));
     for p in 1..=n {
@@ -111,12 +122,11 @@ pub(crate) fn small_bezout_resultant<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) ->
             out
         }
     };
-    let det = Poly::new(det.to_vec());
-    Some(if (n * (n - 1) / 2) % 2 == 1 {
-        -det
+    if (n * (n - 1) / 2) % 2 == 1 {
+        det.map(|c| -c)
     } else {
         det
-    })
+    }
 }
 
 #[cfg(test)]

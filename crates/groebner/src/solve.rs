@@ -36,14 +36,14 @@ pub const DEFAULT_F_TOL_REL: f64 = 1.0 / (1u64 << 30) as f64;
 /// for `x_tol` up to ~1e-9. Declaring a small coefficient zero is harmless here: every `v`
 /// candidate is verified on `F1`, `F2`, and a leading coefficient this small only carries roots
 /// of size ≳ 1/`VANISH_REL`, far outside the box.
-const VANISH_REL: f64 = 1.0 / (1u64 << 26) as f64;
+pub(crate) const VANISH_REL: f64 = 1.0 / (1u64 << 26) as f64;
 
 /// Relative size of `|p(c)|` at a critical point `c` below which `c` is treated as a possible
 /// double root of the eliminant, `2⁻²⁶ ≈ 1.5e-8` (about `√ε`): the rounding of a degree-18
 /// eliminant's coefficients leaves `|p(c)|` at a double root near `γ(k)` times the size of its
 /// terms, many orders below this, while the margin costs only spurious candidates, which the
 /// residual test rejects (see `near_double_roots`).
-const NEAR_DOUBLE_REL: f64 = 1.0 / (1u64 << 26) as f64;
+pub(crate) const NEAR_DOUBLE_REL: f64 = 1.0 / (1u64 << 26) as f64;
 
 /// Exact mode: precisions (bits after the binary point) to which a `u`-root is narrowed, in
 /// turn, when the `v` obtained from a derived basis element at the `f64` value of the root does
@@ -57,11 +57,11 @@ const SHARPEN_BITS: [u32; 3] = [96, 192, 384];
 /// Candidates start within `x_tol` (or the eliminant's conditioning) of the root, so one step
 /// reaches round-off for simple roots; the others cover slow, linear convergence near
 /// tangencies. A step is kept only if it lowers the residual.
-const NEWTON_STEPS: usize = 4;
+pub(crate) const NEWTON_STEPS: usize = 4;
 
 /// Largest Newton step, relative to the box's size: a larger step means the candidate was not
 /// near a root of this system, and polishing must not jump to a different root.
-const NEWTON_MAX_STEP_REL: f64 = 1e-3;
+pub(crate) const NEWTON_MAX_STEP_REL: f64 = 1e-3;
 
 /// How `v` is eliminated.
 ///
@@ -246,6 +246,20 @@ pub fn solve<T: SolveScalar>(
     f2: &BiPoly<T>,
     opts: &SolveOptions,
 ) -> Result<Solution, Error> {
+    // Systems of degree ≤ 3 over f64 by Stam or Bézout: the allocation-free path (`fast.rs`),
+    // the same arithmetic in fixed-size buffers.
+    if let Some(found) = T::solve_fast(f1, f2, opts) {
+        return found;
+    }
+    solve_general(f1, f2, opts)
+}
+
+/// [`solve`] by the general path (any degree, any method, exact or `f64`).
+pub(crate) fn solve_general<T: SolveScalar>(
+    f1: &BiPoly<T>,
+    f2: &BiPoly<T>,
+    opts: &SolveOptions,
+) -> Result<Solution, Error> {
     check_options(opts)?;
     if !T::EXACT {
         if !f1.coeffs().iter().all(|c| c.nearest_f64().is_finite()) {
@@ -366,7 +380,7 @@ pub fn solve<T: SolveScalar>(
     })
 }
 
-fn check_options(opts: &SolveOptions) -> Result<(), Error> {
+pub(crate) fn check_options(opts: &SolveOptions) -> Result<(), Error> {
     for (which, r) in [("u", opts.u_range), ("v", opts.v_range)] {
         if !(r[0].is_finite() && r[1].is_finite() && r[0] <= r[1]) {
             return Err(Error::InvalidRange {
@@ -579,7 +593,7 @@ fn certify_f64<T: SolveScalar>(
 /// the `u`-range: `1e-6`. A component this narrow is covered by its midpoint (Newton on `F1`,
 /// `F2` converges from within 5e-7 of the box in one or two steps, far inside
 /// `NEWTON_MAX_STEP_REL`); a wider one means the `f64` eliminant has lost the roots' positions.
-const CERT_WIDTH_REL: f64 = 1e-6;
+pub(crate) const CERT_WIDTH_REL: f64 = 1e-6;
 
 /// The midpoints of the components of `{u ∈ ub : |e(u)| ≤ bound}`, or `None` if one is wider
 /// than [`CERT_WIDTH_REL`] of `ub`.

@@ -29,6 +29,8 @@ pub struct Workspace {
     pub(crate) restrict: RestrictScratch,
     /// The root finder's methods.
     pub(crate) roots: RootMethods,
+    /// Buffers of the Bézier patches' per-ray algebra (`groebner::solve_ray_patch`).
+    pub(crate) solver: groebner::SolveWorkspace,
     /// Counters.
     pub stats: TraceStats,
 }

@@ -1,0 +1,723 @@
+//! The per-ray `f64` path of [`solve`](crate::solve) for systems of degree ≤ 3 in `u` and in
+//! `v` (a ray against a bicubic or smaller patch), in a reusable [`SolveWorkspace`]: the same
+//! steps and the same arithmetic as the general path (`solve.rs`; `paper-notes/groebner.md`
+//! §5, `paper-notes/resultant.md` §3), with fixed-size polynomials and buffers that are reused
+//! from one solve to the next, so that after a warm-up a solve allocates nothing.
+//!
+//! Methods: [`Method::Stam`] (the dense tracked loop of the `dense` module, then the
+//! certificate of `certify_f64`, else the Bézout resultant) and [`Method::BezoutResultant`]
+//! (the fixed-size determinant of `small_resultant`). The other methods, larger degrees and
+//! exact scalars go through the general path.
+//!
+//! One deliberate difference from the general path: when Stam's list has neither a constant
+//! nor a univariate element, the general path completes it by Buchberger's algorithm before
+//! trying the certificate; here the resultant is solved directly. On the teapot view of
+//! `paper-notes/groebner.md` §5 that completion never led to a certified basis (measured: the
+//! same number of certified systems with and without it), and it allocates.
+//!
+//! Allocation: none after warm-up, except in degenerate inputs (both equations free of `v`:
+//! a gcd) and in `poly`'s exact root-isolation fallback when a query needs it
+//! ([`poly::RootStats::exact_fallbacks`]).
+
+use poly::{BiPoly, Poly, RootOptions, RootStats, Scalar, gamma};
+
+use crate::dense::{Corner, DensePoly, MAX_ELEMENTS, SLOTS, stam_dense};
+use crate::error::Error;
+use crate::ray_patch::ray_patch_small;
+use crate::small_resultant::small_bezout_det;
+use crate::solve::{
+    CERT_WIDTH_REL, Method, NEAR_DOUBLE_REL, NEWTON_MAX_STEP_REL, NEWTON_STEPS, Root, Solution,
+    SolveOptions, SolveStats, VANISH_REL, Verdict, check_options,
+};
+
+/// A polynomial of degree ≤ 3 in `u` and in `v`: `c[4 * j + i]` is the coefficient of
+/// `u^i v^j`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Small {
+    pub(crate) c: [f64; 16],
+}
+
+impl Small {
+    /// The polynomial of a [`BiPoly`] that fits (stride and rows ≤ 4).
+    pub(crate) fn from_bipoly(p: &BiPoly<f64>) -> Option<Self> {
+        if p.stride() > 4 || p.rows() > 4 {
+            return None;
+        }
+        let mut c = [0.0; 16];
+        for (j, row) in p.rows_iter().enumerate() {
+            c[4 * j..4 * j + row.len()].copy_from_slice(row);
+        }
+        Some(Small { c })
+    }
+
+    fn to_bipoly(self) -> BiPoly<f64> {
+        BiPoly::from_grid(4, 4, self.c.to_vec())
+    }
+
+    fn is_zero(&self) -> bool {
+        self.c.iter().all(|&c| c == 0.0)
+    }
+
+    /// `Deg_v`: the highest `j` with a non-zero coefficient (0 for zero).
+    fn deg_v(&self) -> usize {
+        (0..4)
+            .rev()
+            .find(|&j| self.c[4 * j..4 * j + 4].iter().any(|&c| c != 0.0))
+            .unwrap_or(0)
+    }
+
+    fn is_constant(&self) -> bool {
+        self.c[1..].iter().all(|&c| c == 0.0)
+    }
+
+    /// The value at `(u, v)` by nested Horner (as `BiPoly::eval`).
+    pub(crate) fn eval(&self, u: f64, v: f64) -> f64 {
+        self.c.chunks_exact(4).rev().fold(0.0, |acc, row| {
+            acc * v + row.iter().rev().fold(0.0, |a, c| a * u + c)
+        })
+    }
+
+    /// Value, gradient and term size at `(u, v)` (as `solve.rs`' `eval_grad`).
+    fn eval_grad(&self, u: f64, v: f64) -> (f64, f64, f64, f64) {
+        let (au, av) = (u.abs(), v.abs());
+        let (mut f, mut fu, mut fv, mut a) = (0.0, 0.0, 0.0, 0.0);
+        for row in self.c.chunks_exact(4).rev() {
+            let (mut r, mut dr, mut ar) = (0.0, 0.0, 0.0);
+            for &c in row.iter().rev() {
+                dr = dr * u + r;
+                r = r * u + c;
+                ar = ar * au + c.abs();
+            }
+            fv = fv * v + f;
+            f = f * v + r;
+            fu = fu * v + dr;
+            a = a * av + ar;
+        }
+        (f, fu, fv, a)
+    }
+}
+
+/// Reusable buffers for [`solve_ray_patch`] (and the `f64` path of [`solve`](crate::solve)):
+/// one per thread. After the first few solves have grown its buffers, a solve of a system of
+/// degree ≤ 3 in `u` and `v` by [`Method::Stam`] or [`Method::BezoutResultant`] allocates
+/// nothing (see the module docs of `fast.rs` for the rare exceptions).
+#[derive(Debug)]
+pub struct SolveWorkspace {
+    /// Stam's elements (dense, with bounds).
+    slots: Vec<DensePoly>,
+    order: [usize; MAX_ELEMENTS],
+    /// The `u`-polynomial (eliminant or resultant), lowest power first.
+    elim: Vec<f64>,
+    /// Scratch for shifted / derived univariate polynomials.
+    scratch: Vec<f64>,
+    /// `u`-candidates.
+    u_roots: Vec<f64>,
+    /// Cuts of the certificate, critical points.
+    cuts: Vec<f64>,
+    /// `v`-candidates.
+    v_roots: Vec<f64>,
+    /// Verified roots (before and after merging).
+    roots: Vec<Root>,
+    merged: Vec<Root>,
+    /// `t` of each root ([`solve_ray_patch`]).
+    ts: Vec<f64>,
+    /// The root finder's counters (not reported; `poly` needs somewhere to count).
+    root_stats: RootStats,
+}
+
+impl Default for SolveWorkspace {
+    fn default() -> Self {
+        SolveWorkspace {
+            slots: vec![DensePoly::default(); SLOTS],
+            order: [0; MAX_ELEMENTS],
+            elim: Vec::with_capacity(32),
+            scratch: Vec::with_capacity(32),
+            u_roots: Vec::with_capacity(32),
+            cuts: Vec::with_capacity(64),
+            v_roots: Vec::with_capacity(8),
+            roots: Vec::with_capacity(16),
+            merged: Vec::with_capacity(16),
+            ts: Vec::with_capacity(16),
+            root_stats: RootStats::default(),
+        }
+    }
+}
+
+impl SolveWorkspace {
+    /// A workspace with buffers sized for bicubic systems.
+    pub fn new() -> Self {
+        SolveWorkspace::default()
+    }
+}
+
+/// The outcome of [`solve_ray_patch`], borrowing the workspace's buffers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RayPatchSolution<'w> {
+    /// Verified roots in the box, sorted by `u` then `v` (as [`Solution::roots`]).
+    pub roots: &'w [Root],
+    /// The ray parameter of each root, `(S_k(u, v) − O_k) / D_k`
+    /// ([`RayPatchSystem::t_at`](crate::RayPatchSystem::t_at)).
+    pub ts: &'w [f64],
+    /// As [`Solution::verdict`].
+    pub verdict: Verdict,
+    /// As [`Solution::stats`].
+    pub stats: SolveStats,
+}
+
+/// [`ray_patch_system`](crate::ray_patch_system) and [`solve`](crate::solve) in one call over
+/// `f64`, in `ws`'s buffers, with the `t` of each root: the ray tracer's per-ray algebra.
+///
+/// For patches of degree ≤ 3 in `u` and `v` solved by [`Method::Stam`] or
+/// [`Method::BezoutResultant`] it allocates nothing once `ws` has warmed up; the other cases
+/// run the general path and copy its result into `ws`. The roots, verdict and statistics are
+/// those of `solve(&sys.f1, &sys.f2, opts)` on the same system.
+///
+/// # Errors
+/// As [`ray_patch_system`](crate::ray_patch_system) and [`solve`](crate::solve).
+pub fn solve_ray_patch<'w>(
+    ws: &'w mut SolveWorkspace,
+    points: &[[f64; 3]],
+    stride: usize,
+    rows: usize,
+    origin: &[f64; 3],
+    dir: &[f64; 3],
+    opts: &SolveOptions,
+) -> Result<RayPatchSolution<'w>, Error> {
+    let small = stride <= 4
+        && rows <= 4
+        && points.len() == stride * rows
+        && matches!(opts.method, Method::Stam | Method::BezoutResultant);
+    if !small {
+        let sys = crate::ray_patch_system(points, stride, rows, origin, dir)?;
+        let sol = crate::solve(&sys.f1, &sys.f2, opts)?;
+        ws.roots.clear();
+        ws.roots.extend_from_slice(&sol.roots);
+        ws.ts.clear();
+        ws.ts.extend(sol.roots.iter().map(|r| sys.t_at(&r.u, &r.v)));
+        return Ok(RayPatchSolution {
+            roots: &ws.roots,
+            ts: &ws.ts,
+            verdict: sol.verdict,
+            stats: sol.stats,
+        });
+    }
+    let sys = ray_patch_small(points, stride, origin, dir)?;
+    let (verdict, stats) = solve_small(ws, &sys.f1, &sys.f2, opts)?;
+    ws.ts.clear();
+    for r in &ws.roots {
+        ws.ts
+            .push((sys.s_pivot.eval(r.u, r.v) - sys.origin_pivot) / sys.dir_pivot);
+    }
+    Ok(RayPatchSolution {
+        roots: &ws.roots,
+        ts: &ws.ts,
+        verdict,
+        stats,
+    })
+}
+
+/// The `f64` path of [`solve`](crate::solve) for small systems; `None` when it does not
+/// apply (larger degrees, other methods).
+pub(crate) fn solve_f64(
+    f1: &BiPoly<f64>,
+    f2: &BiPoly<f64>,
+    opts: &SolveOptions,
+) -> Option<Result<Solution, Error>> {
+    if !matches!(opts.method, Method::Stam | Method::BezoutResultant) {
+        return None;
+    }
+    let (a, b) = (Small::from_bipoly(f1)?, Small::from_bipoly(f2)?);
+    thread_local! {
+        static WS: std::cell::RefCell<SolveWorkspace> = std::cell::RefCell::new(SolveWorkspace::new());
+    }
+    Some(WS.with(|ws| {
+        let ws = &mut ws.borrow_mut();
+        let (verdict, stats) = solve_small(ws, &a, &b, opts)?;
+        Ok(Solution {
+            roots: ws.roots.clone(),
+            verdict,
+            stats,
+        })
+    }))
+}
+
+/// What the elimination left to solve.
+enum Elim {
+    Verdict(Verdict),
+    /// The `u`-polynomial is in `ws.elim`; `candidates`: `ws.u_roots` already holds the
+    /// certified `u`-candidates. `sources`: the polynomials giving `v`, in order (0 for
+    /// `F1`, 1 for `F2`).
+    Eliminant {
+        candidates: bool,
+        sources: [Option<usize>; 2],
+    },
+}
+
+/// `solve` on `f1`, `f2` (degree ≤ 3 in each variable) into `ws.roots`.
+fn solve_small(
+    ws: &mut SolveWorkspace,
+    f1: &Small,
+    f2: &Small,
+    opts: &SolveOptions,
+) -> Result<(Verdict, SolveStats), Error> {
+    check_options(opts)?;
+    if !f1.c.iter().all(|c| c.is_finite()) {
+        return Err(Error::NonFinite { what: "F1" });
+    }
+    if !f2.c.iter().all(|c| c.is_finite()) {
+        return Err(Error::NonFinite { what: "F2" });
+    }
+    ws.roots.clear();
+    let mut stats = SolveStats::default();
+    let widen = |r: [f64; 2]| [r[0] - opts.x_tol, r[1] + opts.x_tol];
+    let (ub, vb) = (widen(opts.u_range), widen(opts.v_range));
+    let elim = match opts.method {
+        Method::Stam => eliminate_stam(ws, f1, f2, [ub, vb], opts.x_tol, &mut stats)?,
+        _ => eliminate_resultant(ws, f1, f2, &mut stats)?,
+    };
+    let (candidates, sources) = match elim {
+        Elim::Verdict(v) => return Ok((v, stats)),
+        Elim::Eliminant {
+            candidates,
+            sources,
+        } => (candidates, sources),
+    };
+    stats.u_degree = ws.elim.len().saturating_sub(1);
+    if !candidates {
+        ws.u_roots.clear();
+        real_roots_into(
+            &mut ws.elim,
+            ub,
+            opts.x_tol,
+            &mut ws.root_stats,
+            &mut ws.u_roots,
+        );
+        near_double_roots(ws, ub, opts.x_tol);
+    }
+    stats.u_roots = ws.u_roots.len();
+
+    let system = [*f1, *f2];
+    let margin = NEWTON_MAX_STEP_REL * (vb[1] - vb[0]).max(opts.x_tol);
+    let v_search = [vb[0] - margin, vb[1] + margin];
+    for k in 0..ws.u_roots.len() {
+        let u = ws.u_roots[k];
+        // Step 3 (general path): the first source that does not vanish at u gives the
+        // candidates; the next ones are tried if none of them verifies.
+        for &g in sources.iter().flatten() {
+            let g = &system[g];
+            let before = ws.roots.len();
+            let mut rejected = 0;
+            if v_candidates(ws, g, u, 2.0 * opts.x_tol, v_search, opts.x_tol) {
+                for i in 0..ws.v_roots.len() {
+                    match polish_and_verify(&system, u, ws.v_roots[i], opts, ub, vb) {
+                        Some(r) => ws.roots.push(r),
+                        None => rejected += 1,
+                    }
+                }
+            }
+            stats.rejected += rejected;
+            if ws.roots.len() > before {
+                break;
+            }
+        }
+    }
+    // Merge duplicates against every kept root (as the general path).
+    let merge = 4.0 * opts.x_tol;
+    ws.merged.clear();
+    for &r in &ws.roots {
+        if !ws
+            .merged
+            .iter()
+            .any(|a| (a.u - r.u).abs() <= merge && (a.v - r.v).abs() <= merge)
+        {
+            ws.merged.push(r);
+        }
+    }
+    std::mem::swap(&mut ws.roots, &mut ws.merged);
+    // Equal keys under total_cmp are equal bits, so an unstable sort gives the stable order
+    // (and, unlike the stable sort, never allocates).
+    ws.roots
+        .sort_unstable_by(|a, b| a.u.total_cmp(&b.u).then(a.v.total_cmp(&b.v)));
+    Ok((Verdict::Finite, stats))
+}
+
+/// The real roots of the polynomial in `coeffs` in `range` appended to `out` (as
+/// `SolveScalar::real_roots_in` for `f64`); `coeffs` is lent to a [`Poly`] and given back.
+fn real_roots_into(
+    coeffs: &mut Vec<f64>,
+    range: [f64; 2],
+    x_tol: f64,
+    stats: &mut RootStats,
+    out: &mut Vec<f64>,
+) {
+    let p = Poly::new(std::mem::take(coeffs));
+    if p.degree() > 0 {
+        // Errors are impossible here (finite coefficients and bounds, x_tol > 0, p ≠ 0), and
+        // on an error `out` is left as it was, i.e. no roots (as the general path).
+        let _ = p.real_roots_into(range[0], range[1], &RootOptions::new(x_tol), stats, out);
+    }
+    *coeffs = p.into_coeffs();
+}
+
+/// As `solve.rs`' `near_double_roots` on `ws.elim`, adding to `ws.u_roots`.
+fn near_double_roots(ws: &mut SolveWorkspace, range: [f64; 2], x_tol: f64) {
+    let n = ws.elim.len();
+    if n < 3 {
+        return; // degree < 2
+    }
+    ws.scratch.clear();
+    ws.scratch.extend(
+        ws.elim
+            .iter()
+            .enumerate()
+            .skip(1)
+            .map(|(i, &c)| c * i as f64),
+    );
+    ws.cuts.clear();
+    real_roots_into(
+        &mut ws.scratch,
+        range,
+        x_tol,
+        &mut ws.root_stats,
+        &mut ws.cuts,
+    );
+    let merge = 4.0 * x_tol;
+    for &c in &ws.cuts {
+        let (value, size) = ws
+            .elim
+            .iter()
+            .rev()
+            .fold((0.0, 0.0), |(v, s), &a| (v * c + a, s * c.abs() + a.abs()));
+        if value.abs() <= NEAR_DOUBLE_REL * size
+            && !ws.u_roots.iter().any(|r| (r - c).abs() <= merge)
+        {
+            ws.u_roots.push(c);
+        }
+    }
+    ws.u_roots.sort_unstable_by(f64::total_cmp);
+}
+
+/// The sources of `v` after a resultant or a certified basis: `F1`, `F2` with `Deg_v > 0`,
+/// lowest `Deg_v` first (stable).
+fn originals(f1: &Small, f2: &Small) -> [Option<usize>; 2] {
+    let (a, b) = ((f1.deg_v() > 0).then_some(0), (f2.deg_v() > 0).then_some(1));
+    match (a, b) {
+        (Some(a), Some(b)) if f2.deg_v() < f1.deg_v() => [Some(b), Some(a)],
+        (None, b) => [b, None],
+        (a, b) => [a, b],
+    }
+}
+
+/// As `solve.rs`' `eliminate_resultant` with the Bézout method.
+fn eliminate_resultant(
+    ws: &mut SolveWorkspace,
+    f1: &Small,
+    f2: &Small,
+    stats: &mut SolveStats,
+) -> Result<Elim, Error> {
+    if f1.is_zero() || f2.is_zero() {
+        let other = if f1.is_zero() { f2 } else { f1 };
+        let verdict = if other.is_zero() || !other.is_constant() {
+            Verdict::Infinite
+        } else {
+            Verdict::NoCommonRoot
+        };
+        return Ok(Elim::Verdict(verdict));
+    }
+    let (d1, d2) = (f1.deg_v(), f2.deg_v());
+    if d1 == 0 && d2 == 0 {
+        // Degenerate (both free of v): a gcd, on the general path (allocates).
+        let (a, b) = (f1.to_bipoly(), f2.to_bipoly());
+        let g = a
+            .to_poly_u()
+            .zip(b.to_poly_u())
+            .map(|(a, b)| a.gcd(&b))
+            .unwrap_or_else(Poly::zero);
+        let verdict = if g.degree() > 0 {
+            Verdict::Infinite
+        } else {
+            Verdict::NoCommonRoot
+        };
+        return Ok(Elim::Verdict(verdict));
+    }
+    if d1 == 0 || d2 == 0 {
+        // One equation in u alone: its own roots (see the general path).
+        let (pu, other, which) = if d1 == 0 { (f1, f2, 1) } else { (f2, f1, 0) };
+        set_trimmed(&mut ws.elim, &pu.c[..4]);
+        if ws.elim.len() <= 1 {
+            return Ok(Elim::Verdict(Verdict::NoCommonRoot));
+        }
+        stats.v_degree = other.deg_v();
+        return Ok(Elim::Eliminant {
+            candidates: false,
+            sources: [Some(which), None],
+        });
+    }
+    let det = small_bezout_det(&rows(f1), &rows(f2), d1.max(d2));
+    set_trimmed(&mut ws.elim, &det);
+    // trim_negligible: trailing coefficients negligible against the largest.
+    let scale = ws.elim.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+    while ws.elim.last().is_some_and(|c| c.is_negligible(&scale)) {
+        ws.elim.pop();
+    }
+    if ws.elim.is_empty() {
+        return Ok(Elim::Verdict(Verdict::Infinite));
+    }
+    if ws.elim.len() == 1 {
+        return Ok(Elim::Verdict(Verdict::NoCommonRoot));
+    }
+    let sources = originals(f1, f2);
+    stats.v_degree = sources[0].map_or(0, |g| [f1, f2][g].deg_v());
+    Ok(Elim::Eliminant {
+        candidates: false,
+        sources,
+    })
+}
+
+/// The coefficients in `v` of `p`, each a polynomial in `u` (`small_resultant`'s layout).
+fn rows(p: &Small) -> [[f64; 4]; 4] {
+    std::array::from_fn(|j| std::array::from_fn(|i| p.c[4 * j + i]))
+}
+
+/// `out ← c` without trailing exact zeros (as `Poly::new`).
+fn set_trimmed(out: &mut Vec<f64>, c: &[f64]) {
+    out.clear();
+    let n = c.iter().rposition(|&x| x != 0.0).map_or(0, |k| k + 1);
+    out.extend_from_slice(&c[..n]);
+}
+
+/// The `f64` Stam path (as `eliminate_groebner_f64` + `certify_f64`): the dense loop, then the
+/// certificate, else the Bézout resultant.
+fn eliminate_stam(
+    ws: &mut SolveWorkspace,
+    f1: &Small,
+    f2: &Small,
+    boxes: [[f64; 2]; 2],
+    x_tol: f64,
+    stats: &mut SolveStats,
+) -> Result<Elim, Error> {
+    let [ub, vb] = boxes;
+    let u_max = ub[0].abs().max(ub[1].abs());
+    let v_max = vb[0].abs().max(vb[1].abs());
+    ws.slots[0].set_input(&f1.c);
+    ws.slots[1].set_input(&f2.c);
+    let found = stam_dense(&mut ws.slots, &mut ws.order, &Corner::new(u_max, v_max));
+    let Ok(len) = found else {
+        // Abandoned (noise or capacity): says nothing about the roots.
+        return fallback(ws, f1, f2, stats);
+    };
+    let order = ws.order;
+    let elements = &order[..len];
+    stats.basis_size = len;
+    stats.v_degree = elements
+        .iter()
+        .map(|&k| ws.slots[k].grid_extent().1.saturating_sub(1))
+        .filter(|&d| d > 0)
+        .min()
+        .unwrap_or(0);
+    let bound_of = |t: &DensePoly| {
+        // The ideal distance, plus the rounding of evaluating ĝ itself, times 2 (as
+        // `certify_f64`).
+        let (stride, rows) = t.grid_extent();
+        let eval = gamma(2 * (stride + rows)) * t.size_at(u_max, v_max);
+        2.0 * (t.ideal_distance_at(u_max, v_max) + eval)
+    };
+    if let Some(&k) = elements
+        .iter()
+        .find(|&&k| ws.slots[k].is_nonzero_constant())
+    {
+        let t = &ws.slots[k];
+        if t.c[0].abs() > bound_of(t) {
+            return Ok(Elim::Verdict(Verdict::NoCommonRoot));
+        }
+        return fallback(ws, f1, f2, stats);
+    }
+    let Some(&k) = elements
+        .iter()
+        .rev()
+        .find(|&&k| ws.slots[k].is_univariate_nonconstant())
+    else {
+        // Neither a unit nor an eliminant: the general path would complete the list by
+        // Buchberger first; see the module docs.
+        return fallback(ws, f1, f2, stats);
+    };
+    let bound = bound_of(&ws.slots[k]);
+    {
+        let (slots, elim) = (&ws.slots, &mut ws.elim);
+        elim.clear();
+        elim.extend_from_slice(slots[k].row0());
+    }
+    if !certified_candidates(ws, bound, ub, x_tol) {
+        return fallback(ws, f1, f2, stats);
+    }
+    stats.u_degree = ws.elim.len() - 1;
+    Ok(Elim::Eliminant {
+        candidates: true,
+        sources: originals(f1, f2),
+    })
+}
+
+/// The resultant in place of an uncertified basis.
+fn fallback(
+    ws: &mut SolveWorkspace,
+    f1: &Small,
+    f2: &Small,
+    stats: &mut SolveStats,
+) -> Result<Elim, Error> {
+    stats.fallback = true;
+    eliminate_resultant(ws, f1, f2, stats)
+}
+
+/// As `solve.rs`' `certified_candidates` on `ws.elim`, into `ws.u_roots`; `false` when a
+/// component is too wide.
+fn certified_candidates(ws: &mut SolveWorkspace, bound: f64, ub: [f64; 2], x_tol: f64) -> bool {
+    if !bound.is_finite() {
+        return false;
+    }
+    let max_width = CERT_WIDTH_REL * (ub[1] - ub[0]).max(x_tol);
+    ws.cuts.clear();
+    ws.cuts.push(ub[0]);
+    ws.cuts.push(ub[1]);
+    for shift in [-bound, bound] {
+        ws.scratch.clear();
+        ws.scratch.extend_from_slice(&ws.elim);
+        ws.scratch[0] += shift;
+        real_roots_into(&mut ws.scratch, ub, x_tol, &mut ws.root_stats, &mut ws.cuts);
+    }
+    ws.cuts.sort_unstable_by(f64::total_cmp);
+    ws.cuts.dedup();
+    let e = &ws.elim;
+    let inside = |x: f64| horner(e, x).abs() <= bound;
+    let out = &mut ws.u_roots;
+    out.clear();
+    let mut start: Option<f64> = None;
+    let close = |a: f64, b: f64, out: &mut Vec<f64>| -> bool {
+        if b - a > max_width + 2.0 * x_tol {
+            return false;
+        }
+        out.push(0.5 * (a + b));
+        true
+    };
+    for w in ws.cuts.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        if inside(0.5 * (a + b)) {
+            start.get_or_insert(a);
+        } else if let Some(s) = start.take() {
+            if !close(s, a, out) {
+                return false;
+            }
+        } else if a > ub[0] && !close(a, a, out) {
+            return false;
+        }
+    }
+    let ok = if let Some(s) = start {
+        close(s, ub[1], out)
+    } else if inside(ub[1]) {
+        close(ub[1], ub[1], out)
+    } else {
+        true
+    };
+    if !ok {
+        return false;
+    }
+    out.dedup_by(|b, a| (*b - *a).abs() <= 4.0 * x_tol);
+    true
+}
+
+/// `Σ c_i x^i` by Horner (as `Poly::eval`).
+fn horner(c: &[f64], x: f64) -> f64 {
+    c.iter().rev().fold(0.0, |acc, &a| acc * x + a)
+}
+
+/// As `solve.rs`' `v_candidates` for `f64`, into `ws.v_roots`; `false` when `g(u, ·)`
+/// vanishes identically.
+fn v_candidates(
+    ws: &mut SolveWorkspace,
+    g: &Small,
+    u: f64,
+    u_err: f64,
+    vb: [f64; 2],
+    x_tol: f64,
+) -> bool {
+    let au_wide = u.abs() + u_err;
+    let mut coeffs = [0.0; 4];
+    let mut significant = false;
+    for (j, row) in g.c.chunks_exact(4).enumerate() {
+        let (mut c, mut s) = (0.0, 0.0);
+        for &a in row.iter().rev() {
+            c = c * u + a;
+            s = s * au_wide + a.abs();
+        }
+        let vanished = c.abs() <= VANISH_REL * s;
+        significant |= !vanished;
+        coeffs[j] = if vanished { 0.0 } else { c };
+    }
+    ws.v_roots.clear();
+    if !significant {
+        return false;
+    }
+    set_trimmed(&mut ws.scratch, &coeffs);
+    match ws.scratch.len() {
+        0 | 1 => {}
+        2 => {
+            let v = -ws.scratch[0] / ws.scratch[1];
+            if v >= vb[0] && v <= vb[1] {
+                ws.v_roots.push(v);
+            }
+        }
+        _ => real_roots_into(
+            &mut ws.scratch,
+            vb,
+            x_tol,
+            &mut ws.root_stats,
+            &mut ws.v_roots,
+        ),
+    }
+    true
+}
+
+/// As `solve.rs`' `polish_and_verify`.
+fn polish_and_verify(
+    system: &[Small; 2],
+    mut u: f64,
+    mut v: f64,
+    opts: &SolveOptions,
+    ub: [f64; 2],
+    vb: [f64; 2],
+) -> Option<Root> {
+    let max_step = NEWTON_MAX_STEP_REL * (ub[1] - ub[0]).max(vb[1] - vb[0]).max(opts.x_tol);
+    let measure = |e: &[(f64, f64, f64, f64); 2]| {
+        e.iter()
+            .map(|&(f, _, _, a)| f.abs() / a.max(f64::MIN_POSITIVE))
+            .fold(0.0, f64::max)
+    };
+    let mut e = [system[0].eval_grad(u, v), system[1].eval_grad(u, v)];
+    let mut r = measure(&e);
+    for _ in 0..NEWTON_STEPS {
+        let ((f, fu, fv, _), (g, gu, gv, _)) = (e[0], e[1]);
+        let det = fu * gv - fv * gu;
+        if det == 0.0
+            || !det.is_finite()
+            || det.abs() <= f64::EPSILON * (fu * gv).abs().max((fv * gu).abs())
+        {
+            break;
+        }
+        let du = (f * gv - g * fv) / det;
+        let dv = (g * fu - f * gu) / det;
+        if !(du.abs() <= max_step && dv.abs() <= max_step) {
+            break;
+        }
+        let (nu, nv) = (u - du, v - dv);
+        let ne = [system[0].eval_grad(nu, nv), system[1].eval_grad(nu, nv)];
+        let nr = measure(&ne);
+        if nr.is_nan() || nr >= r {
+            break;
+        }
+        (u, v, e, r) = (nu, nv, ne, nr);
+    }
+    let ok = e
+        .iter()
+        .all(|&(f, fu, fv, a)| f.abs() <= opts.f_tol_rel * a + (fu.abs() + fv.abs()) * opts.x_tol);
+    let inside = u >= ub[0] && u <= ub[1] && v >= vb[0] && v <= vb[1];
+    (ok && inside).then_some(Root { u, v })
+}
