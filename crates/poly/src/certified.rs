@@ -22,7 +22,7 @@
 use smallvec::SmallVec;
 
 use crate::bernstein::{self, Bracket, Brackets, Stuck};
-use crate::eval_bound::certified_sign;
+use crate::eval_bound::{certified_sign, certified_sign_pair};
 use crate::root_interval::RootInterval;
 use crate::scalar::{Rat, rat_from_f64};
 use crate::stats::RootStats;
@@ -82,6 +82,19 @@ impl<'p> CertifiedSearch<'p> {
         first_only: bool,
         stats: &mut RootStats,
     ) -> Self {
+        let signs = certified_sign_pair(p.coeffs(), lo, hi);
+        Self::run_with_signs(p, (lo, hi), signs, first_only, stats)
+    }
+
+    /// As [`run`](Self::run), with the caller's [`certified_sign`]s of `p(lo)`, `p(hi)` (0
+    /// where not certain).
+    pub(crate) fn run_with_signs(
+        p: &'p Poly<f64>,
+        (lo, hi): (f64, f64),
+        signs: (i8, i8),
+        first_only: bool,
+        stats: &mut RootStats,
+    ) -> Self {
         let mut search = CertifiedSearch {
             p,
             first_only,
@@ -90,7 +103,7 @@ impl<'p> CertifiedSearch<'p> {
             exact: None,
             found: SmallVec::new(),
         };
-        search.start(lo, hi, stats);
+        search.start(lo, hi, signs, stats);
         search
     }
 
@@ -101,9 +114,8 @@ impl<'p> CertifiedSearch<'p> {
 
     /// Certifies the end signs; an end whose sign cannot be certified (a root at or within
     /// rounding of it) gets a short exact piece next to it.
-    fn start(&mut self, lo: f64, hi: f64, stats: &mut RootStats) {
+    fn start(&mut self, lo: f64, hi: f64, (s_lo, s_hi): (i8, i8), stats: &mut RootStats) {
         let c = self.p.coeffs();
-        let (s_lo, s_hi) = (certified_sign(c, lo), certified_sign(c, hi));
         let (mut a, mut s_a) = (lo, s_lo);
         if s_lo == 0 {
             let Some((x, s)) = near_end(c, lo, hi, lo, 1.0) else {

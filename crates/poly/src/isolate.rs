@@ -15,7 +15,7 @@ use std::cell::Cell;
 use crate::bernstein::Bracket;
 use crate::certified::{CertifiedSearch, Found, exact_isolate};
 use crate::closed_form::{linear_smallest, quadratic_smallest};
-use crate::eval_bound::certified_sign;
+use crate::eval_bound::{certified_sign, certified_sign_pair};
 use crate::refine::{Refined, bisect_rational_to_f64, refine_bracket, refine_exact_f64};
 use crate::root_error::RootError;
 use crate::root_interval::RootInterval;
@@ -554,7 +554,13 @@ fn certified_smallest(
             return answer;
         }
     }
-    let search = CertifiedSearch::run(p, lo, hi, true, stats);
+    let signs = certified_sign_pair(c, lo, hi);
+    if hi - lo <= opts.x_tol && signs.0 * signs.1 < 0 {
+        // Every point of the interval is within x_tol of any root in it, and opposite end
+        // signs prove one: no isolation needed (a shadow ray's "is anything in the way").
+        return Some(lo + 0.5 * (hi - lo));
+    }
+    let search = CertifiedSearch::run_with_signs(p, (lo, hi), signs, true, stats);
     let first = search.found.first()?;
     Some(refine_found(p, &search, first, opts, stats))
 }

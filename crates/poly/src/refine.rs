@@ -128,6 +128,7 @@ fn illinois(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined
         s_lo,
         f_lo,
         f_hi,
+        ..
     } = b;
     let mut f_lo = if f_lo.is_nan() { horner(p, lo) } else { f_lo };
     let mut f_hi = if f_hi.is_nan() { horner(p, hi) } else { f_hi };
@@ -197,12 +198,15 @@ fn newton(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined {
         s_lo,
         f_lo,
         f_hi,
+        guess,
     } = b;
     let delta = half_tol(x_tol);
-    // Start from the secant point when both end values are known (they are for interior
-    // brackets from the Bernstein isolator): usually much closer than the midpoint.
+    // Start from the isolator's guess (the control polygon's zero), else from the secant
+    // point when both end values are known: either is usually much closer than the midpoint.
     let secant = lo - f_lo * ((hi - lo) / (f_hi - f_lo));
-    let mut x = if secant > lo && secant < hi {
+    let mut x = if guess > lo && guess < hi {
+        guess
+    } else if secant > lo && secant < hi {
         secant
     } else {
         midpoint(lo, hi)

@@ -156,14 +156,16 @@ const SPHERE_CLIP_MARGIN: f64 = 1e-9;
 fn sphere_segment(ray: &Ray, c: DVec3, r: f64) -> Option<Range<f64>> {
     let a = ray.dir.length_squared();
     let oc = ray.origin - c;
-    let b = oc.dot(ray.dir) / a; // half the linear coefficient, over a
     let r2 = r * r * (1.0 + SPHERE_CLIP_MARGIN);
-    // Distance² from c to the line, computed without cancellation: |oc × d|² / |d|².
-    let d2 = oc.cross(ray.dir).length_squared() / a;
-    if d2 > r2 {
+    // Distance² from c to the line times |d|², computed without cancellation: |oc × d|².
+    // Compared before any division: most rays that reach here are rejected by it.
+    let d2a = oc.cross(ray.dir).length_squared();
+    if d2a > r2 * a {
         return None;
     }
-    let half = ((r2 - d2) / a).sqrt();
+    let inv_a = 1.0 / a;
+    let b = oc.dot(ray.dir) * inv_a; // half the linear coefficient, over a
+    let half = (r2 * a - d2a).sqrt() * inv_a;
     let pad = SPHERE_CLIP_MARGIN * (b.abs() + half) + f64::MIN_POSITIVE;
     Some((-b - half - pad)..(-b + half + pad))
 }
@@ -243,13 +245,13 @@ impl<F: ImplicitFn> Implicit<F> {
         self.f
             .restrict(o, ray.dir, &mut ws.restrict, &mut ws.coeffs);
         let hi = seg.end - t0;
+        let lo = search_start(range_start, t0, hi);
         let x_tol = if any_root && hi.is_finite() {
-            // Any root proves occlusion: refinement can stop as soon as one is isolated.
-            hi
+            // Any root proves occlusion: any point of the range will do as its value.
+            hi - lo
         } else {
             self.x_tol(ray.dir, o, hi)
         };
-        let lo = search_start(range_start, t0, hi);
         let s = smallest_root_in(ws, lo, hi, x_tol)?;
         Some((t0 + s, o + ray.dir * s))
     }
