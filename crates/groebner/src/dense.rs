@@ -56,8 +56,6 @@ pub(crate) struct DensePoly {
     nv: usize,
     /// The leading monomial (cached).
     lead: Option<Monomial>,
-    /// The tight `(stride, rows)` of the coefficients, as [`poly::BiPoly`] keeps them.
-    extent: (usize, usize),
     /// Bounds that fell outside the grid, each weighted by its monomial at the box corner
     /// (`d_ij · u_max^i · v_max^j`, see [`Corner`]).
     far: f64,
@@ -110,7 +108,6 @@ impl Default for DensePoly {
             nu: 0,
             nv: 0,
             lead: None,
-            extent: (0, 0),
             far: 0.0,
         }
     }
@@ -127,7 +124,7 @@ impl DensePoly {
         }
         self.nu = 4;
         self.nv = 4;
-        self.tighten();
+        self.shrink();
     }
 
     fn clear(&mut self) {
@@ -138,49 +135,62 @@ impl DensePoly {
         self.nu = 0;
         self.nv = 0;
         self.lead = None;
-        self.extent = (0, 0);
         self.far = 0.0;
     }
 
     /// Shrinks `nu`, `nv` to the non-zero content and refreshes the cached leading monomial
     /// and extent; with `zero_rule`, first applies the zero rule (see `Tracked::sub_term`) to
     /// every non-zero coefficient, `cancel` (an index) being zero by construction.
-    fn tighten_with(&mut self, zero_rule: Option<usize>) {
-        let (mut nu, mut nv, mut stride, mut rows) = (0, 0, 0, 0);
-        let mut lead = None;
-        for j in 0..self.nv {
-            let row = j * CAP_U;
-            for i in 0..self.nu {
-                let k = row + i;
-                let mut v = self.c[k];
-                if let Some(cancel) = zero_rule
-                    && v != 0.0
-                    && (k == cancel || v.abs() <= ZERO_ERR_FACTOR * self.d[k])
-                {
-                    // Dropping a term moves the polynomial away from the ideal by |c|.
-                    self.d[k] += v.abs();
-                    self.c[k] = 0.0;
-                    v = 0.0;
-                }
-                if v != 0.0 {
-                    stride = stride.max(i + 1);
-                    rows = j + 1;
-                    lead = Some(Monomial::new(i, j));
-                }
-                if v != 0.0 || self.d[k] != 0.0 {
-                    nu = nu.max(i + 1);
-                    nv = j + 1;
+    fn tighten_with(&mut self, zero_rule: Option<ZeroRule>) {
+        if let Some(rule) = zero_rule {
+            // Dropping a term moves the polynomial away from the ideal by |c|.
+            let v = self.c[rule.cancel];
+            if v != 0.0 {
+                self.d[rule.cancel] += v.abs();
+                self.c[rule.cancel] = 0.0;
+            }
+            for j in rule.rows.0..rule.rows.1 {
+                let (lo, hi) = (j * CAP_U + rule.cols.0, j * CAP_U + rule.cols.1);
+                let (c, d) = (&mut self.c[lo..hi], &mut self.d[lo..hi]);
+                for (c, d) in c.iter_mut().zip(d.iter_mut()) {
+                    let zero = *c != 0.0 && c.abs() <= ZERO_ERR_FACTOR * *d;
+                    *d += if zero { c.abs() } else { 0.0 };
+                    *c = if zero { 0.0 } else { *c };
                 }
             }
         }
-        self.nu = nu;
-        self.nv = nv;
-        self.extent = (stride, rows);
-        self.lead = lead;
+        // Bounds never return to zero, so `nu`, `nv` stay valid upper bounds; only the leading
+        // monomial is looked up again (from the top row down).
+        self.lead = None;
+        for j in (0..self.nv).rev() {
+            let row = &self.c[j * CAP_U..j * CAP_U + self.nu];
+            if let Some(i) = row.iter().rposition(|&c| c != 0.0) {
+                self.lead = Some(Monomial::new(i, j));
+                break;
+            }
+        }
     }
 
     fn tighten(&mut self) {
         self.tighten_with(None);
+    }
+
+    /// Shrinks `nu`, `nv` to the non-zero content (inputs only: elsewhere they are upper
+    /// bounds, which is all the loops need).
+    fn shrink(&mut self) {
+        let (mut nu, mut nv) = (0, 0);
+        for j in 0..self.nv {
+            let row = j * CAP_U;
+            let c = &self.c[row..row + self.nu];
+            let d = &self.d[row..row + self.nu];
+            if let Some(i) = c.iter().zip(d).rposition(|(&c, &d)| c != 0.0 || d != 0.0) {
+                nu = nu.max(i + 1);
+                nv = j + 1;
+            }
+        }
+        self.nu = nu;
+        self.nv = nv;
+        self.tighten();
     }
 
     pub(crate) fn is_zero(&self) -> bool {
@@ -196,9 +206,18 @@ impl DensePoly {
         self.c[m.v * CAP_U + m.u]
     }
 
-    /// The tight `(stride, rows)` of the polynomial's grid, as [`poly::BiPoly`] keeps it.
+    /// The tight `(stride, rows)` of the polynomial's grid, as [`poly::BiPoly`] keeps it (a
+    /// scan: used by the certificate, not in the loop).
     pub(crate) fn grid_extent(&self) -> (usize, usize) {
-        self.extent
+        let (mut stride, mut rows) = (0, 0);
+        for j in 0..self.nv {
+            let row = &self.c[j * CAP_U..j * CAP_U + self.nu];
+            if let Some(i) = row.iter().rposition(|&c| c != 0.0) {
+                stride = stride.max(i + 1);
+                rows = j + 1;
+            }
+        }
+        (stride, rows)
     }
 
     /// `true` when the polynomial is a non-zero constant.
@@ -225,30 +244,26 @@ impl DensePoly {
         };
         let k = m.v * CAP_U + m.u;
         let lc = self.c[k];
-        let (stride, rows) = self.grid_extent();
-        for j in 0..rows {
-            for c in &mut self.c[j * CAP_U..j * CAP_U + stride] {
-                *c /= lc;
-            }
-        }
-        self.c[k] = 1.0;
         let inv = 1.0 / lc.abs();
         self.far *= inv;
+        // One pass (c ← c/lc, d ← d/|lc| + u·|c/lc| where c ≠ 0), branch-free so that it
+        // vectorises; the same values as the three passes of `Tracked::make_monic` (outside
+        // the grid c is zero and stays zero).
         for j in 0..self.nv {
             let row = j * CAP_U;
-            for i in 0..self.nu {
-                self.d[row + i] *= inv;
+            let (c, d) = (
+                &mut self.c[row..row + self.nu],
+                &mut self.d[row..row + self.nu],
+            );
+            for (c, d) in c.iter_mut().zip(d.iter_mut()) {
+                *c /= lc;
+                let add = if *c != 0.0 { U * c.abs() } else { 0.0 };
+                *d = *d * inv + add;
             }
         }
-        for j in 0..rows {
-            let row = j * CAP_U;
-            for i in 0..stride {
-                let c = self.c[row + i];
-                if c != 0.0 {
-                    self.d[row + i] += U * c.abs();
-                }
-            }
-        }
+        // The leading term is exactly one (x/x = 1 in IEEE arithmetic; set as the general
+        // path does).
+        self.c[k] = 1.0;
     }
 
     /// `self ← self − c·x·q`, the term at `cancels` zero by construction; then the zero rule
@@ -261,38 +276,47 @@ impl DensePoly {
         cancels: Monomial,
         corner: &Corner,
     ) -> Result<(), Dense> {
-        let (stride, rows) = q.grid_extent();
-        if stride + x.u > CAP_U || rows + x.v > CAP_V {
+        if (q.nu + x.u > CAP_U || q.nv + x.v > CAP_V) && {
+            let (stride, rows) = q.grid_extent();
+            stride + x.u > CAP_U || rows + x.v > CAP_V
+        } {
             return Err(Dense::Full);
         }
         let (ac, two_ac) = (c.abs(), 2.0 * c.abs());
         let neg = -c;
         self.far += ac * q.far * corner.weight(x.u, x.v);
         for j in 0..q.nv {
-            let qrow = j * CAP_U;
             let tj = j + x.v;
-            for i in 0..q.nu {
-                let (qc, dq) = (q.c[qrow + i], q.d[qrow + i]);
-                if qc == 0.0 && dq == 0.0 {
-                    continue;
-                }
-                let ti = i + x.u;
-                if ti >= CAP_U || tj >= CAP_V {
-                    // Only a bound lands here (the coefficients fit): fold it.
-                    self.far += ac * dq * corner.weight(ti, tj);
-                    continue;
-                }
-                let t = tj * CAP_U + ti;
-                let pk = self.c[t].abs();
-                self.d[t] += ac * dq + U * (pk + two_ac * qc.abs());
-                if qc != 0.0 {
-                    self.c[t] += qc * neg;
-                }
+            let (qc, qd) = (
+                &q.c[j * CAP_U..j * CAP_U + q.nu],
+                &q.d[j * CAP_U..j * CAP_U + q.nu],
+            );
+            // Entries that land inside the grid, then bounds beyond it (the coefficients
+            // fit, checked above): folded.
+            let fit = if tj < CAP_V { q.nu.min(CAP_U - x.u) } else { 0 };
+            for (i, &dq) in qd.iter().enumerate().skip(fit) {
+                self.far += ac * dq * corner.weight(i + x.u, tj);
+            }
+            if fit == 0 {
+                continue;
+            }
+            let base = tj * CAP_U + x.u;
+            let (pc, pd) = (&mut self.c[base..base + fit], &mut self.d[base..base + fit]);
+            // Branch-free (vectorises); entries where q has neither a coefficient nor a
+            // bound add nothing, as in `Tracked::sub_term`.
+            for (((pc, pd), &qc), &dq) in pc.iter_mut().zip(pd.iter_mut()).zip(qc).zip(qd) {
+                let add = ac * dq + U * (pc.abs() + two_ac * qc.abs());
+                *pd += if qc != 0.0 || dq != 0.0 { add } else { 0.0 };
+                *pc += qc * neg;
             }
         }
         self.nu = self.nu.max(q.nu + x.u).min(CAP_U);
         self.nv = self.nv.max(q.nv + x.v).min(CAP_V);
-        self.tighten_with(Some(cancels.v * CAP_U + cancels.u));
+        self.tighten_with(Some(ZeroRule {
+            cancel: cancels.v * CAP_U + cancels.u,
+            rows: (x.v.min(CAP_V), (q.nv + x.v).min(CAP_V)),
+            cols: (x.u.min(CAP_U), (q.nu + x.u).min(CAP_U)),
+        }));
         Ok(())
     }
 
@@ -389,6 +413,19 @@ impl DensePoly {
 }
 
 use crate::tracked::{NOISE_ABORT_REL, ZERO_ERR_FACTOR};
+
+/// Where a reduction step applies the zero rule: the term it cancels (an index), and the
+/// rectangle of rows and columns its update touched. Elsewhere coefficients and bounds are
+/// those of the previous step, which passed the rule already; the general path re-tests them
+/// after rescaling by `make_monic`, which can flip a test only for a coefficient within a few
+/// units of round-off of `ZERO_ERR_FACTOR` times its bound. Either choice is sound: the rule
+/// only decides which terms are kept, and the bounds account for every term it drops.
+#[derive(Clone, Copy, Debug)]
+struct ZeroRule {
+    cancel: usize,
+    rows: (usize, usize),
+    cols: (usize, usize),
+}
 
 /// Two distinct slots, mutably.
 fn pair(slots: &mut [DensePoly], a: usize, b: usize) -> (&mut DensePoly, &mut DensePoly) {
