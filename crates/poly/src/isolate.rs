@@ -969,6 +969,67 @@ mod tests {
     }
 
     #[test]
+    fn any_root_query_answers_from_end_signs_without_isolation() {
+        // Three roots in (0, 4]: with x_tol the whole width, any point of the interval is a
+        // valid answer, and the odd sign change proves a root: no subdivision, no refinement.
+        let p = Poly::from_roots(&[0.5, 1.5, 3.0]);
+        let mut s = RootStats::default();
+        let r = p.smallest_root_with(0.0, 4.0, &RootOptions::new(4.0), &mut s);
+        assert!(r.is_some_and(|r| r > 0.0 && r <= 4.0), "{r:?}");
+        assert_eq!(
+            (s.subdivisions, s.refine_evals),
+            (0, 0),
+            "no isolation work"
+        );
+        // An even count gives no shortcut: both roots of (x − 1)(x − 2) are found by isolation.
+        let q = Poly::from_roots(&[1.0, 2.0]);
+        let r = q.smallest_root_with(0.0, 4.0, &RootOptions::new(4.0), &mut s);
+        assert!(r.is_some_and(|r| r > 0.0 && r <= 4.0), "{r:?}");
+        // And none is still none.
+        let none = Poly::from_roots(&[5.0, 6.0, 7.0]);
+        assert_eq!(
+            none.smallest_root_with(0.0, 4.0, &RootOptions::new(4.0), &mut s),
+            None
+        );
+    }
+
+    #[test]
+    fn newton_starts_at_the_control_polygon_zero() {
+        // Ray–torus quartics as the tracer builds them (R = 2, r = 1, origin on the bounding
+        // box): (|p|² + R² − r²)² − 4R²(x² + y²) along p = o + s·d.
+        let torus = |o: [f64; 3], d: [f64; 3]| {
+            let line = |k: usize| Poly::new(vec![o[k], d[k]]);
+            let (x, y, z) = (line(0), line(1), line(2));
+            let rho2 = &(&x * &x) + &(&y * &y);
+            let s = &(&rho2 + &(&z * &z)) + &Poly::new(vec![3.0]);
+            &(&s * &s) - &(&rho2 * &Poly::new(vec![16.0]))
+        };
+        let rays = [
+            ([-3.0, -0.5, 0.3], [1.0, 0.1, -0.05], 6.0),
+            ([-3.0, 0.2, 0.9], [0.8, 0.3, -0.4], 5.0),
+            ([0.5, -3.0, 1.0], [0.1, 0.9, -0.5], 4.0),
+            ([2.9, -0.3, 1.0], [-0.4, 0.1, -0.9], 2.2),
+            ([-1.0, -3.0, -0.2], [0.3, 0.95, 0.05], 6.0),
+        ];
+        let o = RootOptions::new(1e-10);
+        let mut s = RootStats::default();
+        for (org, dir, hi) in rays {
+            let p = torus(org, dir);
+            check(&p, 0.0, hi, 1e-10, &o);
+            assert!(
+                p.smallest_root_with(0.0, hi, &o, &mut s).is_some(),
+                "each ray hits"
+            );
+        }
+        // Measured: 28 evaluations; 35 when Newton starts from the secant or midpoint.
+        assert!(
+            s.refine_evals <= 30,
+            "{} refinement evaluations",
+            s.refine_evals
+        );
+    }
+
+    #[test]
     fn exact_zero_factor_is_deflated_without_fallback() {
         // x³·(x − 1/2)(x + 1/4): a triple root at 0, as in resultants of collapsed patch edges.
         let p = Poly::new(vec![0.0, 0.0, 0.0, -0.125, -0.25, 1.0]);
