@@ -721,3 +721,96 @@ fn polish_and_verify(
     let inside = u >= ub[0] && u <= ub[1] && v >= vb[0] && v <= vb[1];
     (ok && inside).then_some(Root { u, v })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solve::solve_general;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// A random system of degree ≤ 3 in `u` and `v` with a planted common root in `[0, 1]²`
+    /// (`F_k = A_k − A_k(u0, v0)`), coefficients spread over `scale`.
+    fn planted(rng: &mut ChaCha8Rng, scale: f64) -> (BiPoly<f64>, BiPoly<f64>) {
+        let (u0, v0) = (rng.r#gen::<f64>(), rng.r#gen::<f64>());
+        let mut one = || {
+            let (du, dv) = (rng.gen_range(1..=3), rng.gen_range(1..=3));
+            let p = BiPoly::from_fn(du + 1, dv + 1, |i, j| {
+                rng.gen_range(-1.0..1.0) * scale.powi((i + j) as i32)
+            });
+            &p - &BiPoly::constant(p.eval(&u0, &v0))
+        };
+        (one(), one())
+    }
+
+    #[test]
+    fn same_solutions_as_the_general_path() {
+        // The Bézout path is the same arithmetic: identical solutions. The Stam path differs
+        // from the general one only in two documented speed choices (no Buchberger completion;
+        // bounds beyond the grid folded), so its roots must agree and its verdicts match.
+        let mut rng = ChaCha8Rng::seed_from_u64(0x5eed);
+        let (mut stam_certified, mut stam_total) = (0, 0);
+        for k in 0..400 {
+            let scale = [1.0, 0.3, 0.05][k % 3];
+            let (f1, f2) = planted(&mut rng, scale);
+            for method in [Method::BezoutResultant, Method::Stam] {
+                let opts = SolveOptions {
+                    method,
+                    ..SolveOptions::default()
+                };
+                let general = solve_general(&f1, &f2, &opts).unwrap();
+                let fast = solve_f64(&f1, &f2, &opts).expect("small system").unwrap();
+                if method == Method::BezoutResultant {
+                    assert_eq!(fast, general, "system {k}: {f1} / {f2}");
+                    continue;
+                }
+                stam_total += 1;
+                stam_certified += usize::from(!fast.stats.fallback);
+                assert_eq!(fast.verdict, general.verdict, "system {k}");
+                assert_eq!(
+                    fast.roots.len(),
+                    general.roots.len(),
+                    "system {k}: {fast:?}"
+                );
+                for (a, b) in fast.roots.iter().zip(&general.roots) {
+                    assert!(
+                        (a.u - b.u).abs() <= 1e-9 && (a.v - b.v).abs() <= 1e-9,
+                        "system {k}: {a:?} vs {b:?}"
+                    );
+                }
+            }
+        }
+        assert!(
+            stam_certified * 10 > stam_total,
+            "the Stam path certified {stam_certified} of {stam_total}"
+        );
+    }
+
+    #[test]
+    fn workspace_path_equals_system_then_solve() {
+        // solve_ray_patch = ray_patch_system + solve, with t from the pivot equation.
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let mut ws = SolveWorkspace::new();
+        for _ in 0..50 {
+            let points: Vec<[f64; 3]> = (0..16)
+                .map(|_| std::array::from_fn(|_| rng.gen_range(-1.0..1.0)))
+                .collect();
+            let origin: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-0.5..0.5));
+            let dir: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+            for method in [Method::BezoutResultant, Method::Stam] {
+                let opts = SolveOptions {
+                    method,
+                    ..SolveOptions::default()
+                };
+                let sys = crate::ray_patch_system(&points, 4, 4, &origin, &dir).unwrap();
+                let sol = crate::solve(&sys.f1, &sys.f2, &opts).unwrap();
+                let got = solve_ray_patch(&mut ws, &points, 4, 4, &origin, &dir, &opts).unwrap();
+                assert_eq!(got.roots, sol.roots.as_slice());
+                assert_eq!((got.verdict, got.stats), (sol.verdict, sol.stats));
+                for (t, r) in got.ts.iter().zip(&sol.roots) {
+                    assert_eq!(*t, sys.t_at(&r.u, &r.v), "t by the pivot equation");
+                }
+            }
+        }
+    }
+}
