@@ -473,11 +473,13 @@ fn r2(
 }
 
 /// Stam's loop (as `stam_tracked_until` with the `is_noise` abort) on the inputs in slots 0
-/// and 1. On success `order[..len]` lists the slots of the non-zero elements `F_1 … F_N`.
+/// and 1; with `stop_at_eliminant`, stopped at the first new element in `K[u]` or constant
+/// (what the `f64` solver does, see the comment in the loop). On success `order[..len]` lists the slots of the non-zero elements `F_1 … F_N`.
 pub(crate) fn stam_dense(
     slots: &mut [DensePoly],
     order: &mut [usize; MAX_ELEMENTS],
     corner: &Corner,
+    stop_at_eliminant: bool,
 ) -> Result<usize, Dense> {
     debug_assert!(slots.len() >= SLOTS, "a workspace has SLOTS slots");
     let (a, b) = r2(slots, 0, 1, corner)?;
@@ -502,6 +504,16 @@ pub(crate) fn stam_dense(
         }
         order[len] = s;
         len += 1;
+        // Stop at the first element in K[u] (the eliminant) or constant: the certificate
+        // holds for any element of the ideal with its bound, and the next round, which in
+        // exact arithmetic reduces the S-polynomial to zero and leaves the eliminant as it
+        // is, in f64 reduces the eliminant and its neighbour again and inflates their
+        // bounds. Measured on teapot.scene (300², one thread): 7.0% of the systems
+        // certified instead of 2.4%, and 25% less time per test.
+        let new = &slots[s];
+        if stop_at_eliminant && (new.is_univariate_nonconstant() || new.is_nonzero_constant()) {
+            break;
+        }
         // The next spare: a slot not in use.
         spare = (0..slots.len())
             .find(|k| !order[..len].contains(k))
@@ -562,7 +574,7 @@ mod tests {
         slots[0].set_input(&grid(f1));
         slots[1].set_input(&grid(f2));
         let mut order = [0; MAX_ELEMENTS];
-        let dense = stam_dense(&mut slots, &mut order, &Corner::new(um, vm));
+        let dense = stam_dense(&mut slots, &mut order, &Corner::new(um, vm), false);
         match (general, dense) {
             (None, Err(Dense::Noise)) => {}
             (Some(g), Ok(len)) => {

@@ -501,7 +501,12 @@ fn eliminate_stam(
     let v_max = vb[0].abs().max(vb[1].abs());
     ws.slots[0].set_input(&f1.c);
     ws.slots[1].set_input(&f2.c);
-    let found = stam_dense(&mut ws.slots, &mut ws.order, &Corner::new(u_max, v_max));
+    let found = stam_dense(
+        &mut ws.slots,
+        &mut ws.order,
+        &Corner::new(u_max, v_max),
+        true,
+    );
     let Ok(len) = found else {
         // Abandoned (noise or capacity): says nothing about the roots.
         return fallback(ws, f1, f2, stats);
