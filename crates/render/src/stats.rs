@@ -38,6 +38,9 @@ pub struct TraceStats {
     pub secondary_skipped_depth: u64,
     /// Transmissions turned into reflections by total internal reflection.
     pub total_internal_reflections: u64,
+    /// Of those, rays not traced because the reflected ray (same origin, same direction) was
+    /// traced anyway and carried the transmitted weight too.
+    pub tir_merged: u64,
     /// Hits at a singular point (`∇F = 0`) shaded with the fallback normal.
     pub singular_normals: u64,
     /// Root queries of the polynomial solver (by degree, exact fallbacks…).
@@ -88,6 +91,7 @@ impl TraceStats {
         self.secondary_skipped_material += o.secondary_skipped_material;
         self.secondary_skipped_depth += o.secondary_skipped_depth;
         self.total_internal_reflections += o.total_internal_reflections;
+        self.tir_merged += o.tir_merged;
         self.singular_normals += o.singular_normals;
         self.roots.merge(&o.roots);
         self.patches.merge(&o.patches);
@@ -208,6 +212,11 @@ impl fmt::Display for StatsReport<'_> {
             f,
             "  total internal reflections        {:>12}",
             s.total_internal_reflections
+        )?;
+        writeln!(
+            f,
+            "    merged with the reflected ray   {:>12}",
+            s.tir_merged
         )?;
         writeln!(
             f,

@@ -185,25 +185,27 @@ fn shade(
         }
     }
 
-    // (2.11)–(2.13) reflection: R = V − 2(V·N)N, the normalised W + 2N.
+    // (2.11)–(2.13) reflection: R = V − 2(V·N)N, the normalised W + 2N. The reflected ray is
+    // traced after the transmission below, which may add its own weight to it.
     let cos_alpha = v.dot(n); // ≤ 0 after the flip
     let reflect_dir = v - n * (2.0 * cos_alpha);
+    let mut reflect_weight = 0.0;
     if m.illumination >= Illumination::Mirror {
         if m.ks == 0.0 {
             ws.stats.secondary_skipped_material += 1;
         } else if depth >= scene.world.max_depth {
             ws.stats.secondary_skipped_depth += 1;
         } else {
-            ws.stats.reflected_rays += 1;
-            let origin = offset_ray_origin(p, g.p_err, n, reflect_dir);
-            color += trace(scene, &Ray::new(origin, reflect_dir), depth + 1, ws) * m.ks;
+            reflect_weight = m.ks;
         }
     }
 
     // (2.14)–(2.16) transmission. With k_n = n₂/n₁ (inverted when leaving the object), eq.
     // 2.15 is Snell's law: P = V/k_n + (−cos α/k_n − √(1 − (1 − cos²α)/k_n²))·N, as in
     // Stam's `Intensity`. When the root is imaginary (total internal reflection) the
-    // transmitted energy follows the reflected direction.
+    // transmitted energy follows the reflected direction: the same ray from the same origin
+    // as the reflected one, so when that one is traced it carries both weights (k_s + k_t)
+    // and is traced once.
     if m.illumination >= Illumination::Transparent {
         if m.kt == 0.0 {
             ws.stats.secondary_skipped_material += 1;
@@ -212,16 +214,26 @@ fn shade(
         } else {
             let kn = if inside { 1.0 / m.kn } else { m.kn };
             let q = 1.0 - (1.0 - cos_alpha * cos_alpha) / (kn * kn);
-            let dir = if q >= 0.0 {
-                v / kn + n * (-cos_alpha / kn - q.sqrt())
+            if q >= 0.0 {
+                let dir = v / kn + n * (-cos_alpha / kn - q.sqrt());
+                ws.stats.refracted_rays += 1;
+                let origin = offset_ray_origin(p, g.p_err, n, dir);
+                color += trace(scene, &Ray::new(origin, dir), depth + 1, ws) * m.kt;
             } else {
                 ws.stats.total_internal_reflections += 1;
-                reflect_dir
-            };
-            ws.stats.refracted_rays += 1;
-            let origin = offset_ray_origin(p, g.p_err, n, dir);
-            color += trace(scene, &Ray::new(origin, dir), depth + 1, ws) * m.kt;
+                if reflect_weight > 0.0 {
+                    ws.stats.tir_merged += 1;
+                } else {
+                    ws.stats.refracted_rays += 1;
+                }
+                reflect_weight += m.kt;
+            }
         }
+    }
+    if reflect_weight > 0.0 {
+        ws.stats.reflected_rays += 1;
+        let origin = offset_ray_origin(p, g.p_err, n, reflect_dir);
+        color += trace(scene, &Ray::new(origin, reflect_dir), depth + 1, ws) * reflect_weight;
     }
 
     // Stam clamps each intensity to at most 1 (end of `Intensity`).
