@@ -54,6 +54,9 @@ pub(crate) struct DensePoly {
     /// to bound the loops).
     nu: usize,
     nv: usize,
+    /// Per row, every non-zero coefficient lies at `i < cu[j]` (upper bounds: the leading
+    /// monomial's search skips the rest).
+    cu: [usize; CAP_V],
     /// The leading monomial (cached).
     lead: Option<Monomial>,
     /// Bounds that fell outside the grid, each weighted by its monomial at the box corner
@@ -107,6 +110,7 @@ impl Default for DensePoly {
             d: [0.0; CAP],
             nu: 0,
             nv: 0,
+            cu: [0; CAP_V],
             lead: None,
             far: 0.0,
         }
@@ -124,6 +128,7 @@ impl DensePoly {
         }
         self.nu = 4;
         self.nv = 4;
+        self.cu = [4; CAP_V];
         self.shrink();
     }
 
@@ -134,6 +139,7 @@ impl DensePoly {
         }
         self.nu = 0;
         self.nv = 0;
+        self.cu = [0; CAP_V];
         self.lead = None;
         self.far = 0.0;
     }
@@ -153,7 +159,8 @@ impl DensePoly {
                 let (lo, hi) = (j * CAP_U + rule.cols.0, j * CAP_U + rule.cols.1);
                 let (c, d) = (&mut self.c[lo..hi], &mut self.d[lo..hi]);
                 for (c, d) in c.iter_mut().zip(d.iter_mut()) {
-                    let zero = *c != 0.0 && c.abs() <= ZERO_ERR_FACTOR * *d;
+                    // `&`, not `&&`: no branch, so that the loop vectorises.
+                    let zero = (*c != 0.0) & (c.abs() <= ZERO_ERR_FACTOR * *d);
                     *d += if zero { c.abs() } else { 0.0 };
                     *c = if zero { 0.0 } else { *c };
                 }
@@ -163,10 +170,14 @@ impl DensePoly {
         // monomial is looked up again (from the top row down).
         self.lead = None;
         for j in (0..self.nv).rev() {
-            let row = &self.c[j * CAP_U..j * CAP_U + self.nu];
-            if let Some(i) = row.iter().rposition(|&c| c != 0.0) {
-                self.lead = Some(Monomial::new(i, j));
-                break;
+            let row = &self.c[j * CAP_U..j * CAP_U + self.cu[j]];
+            match row.iter().rposition(|&c| c != 0.0) {
+                Some(i) => {
+                    self.cu[j] = i + 1;
+                    self.lead = Some(Monomial::new(i, j));
+                    break;
+                }
+                None => self.cu[j] = 0,
             }
         }
     }
@@ -211,7 +222,7 @@ impl DensePoly {
     pub(crate) fn grid_extent(&self) -> (usize, usize) {
         let (mut stride, mut rows) = (0, 0);
         for j in 0..self.nv {
-            let row = &self.c[j * CAP_U..j * CAP_U + self.nu];
+            let row = &self.c[j * CAP_U..j * CAP_U + self.cu[j]];
             if let Some(i) = row.iter().rposition(|&c| c != 0.0) {
                 stride = stride.max(i + 1);
                 rows = j + 1;
@@ -310,6 +321,10 @@ impl DensePoly {
                 *pc += qc * neg;
             }
         }
+        for j in 0..q.nv.min(CAP_V.saturating_sub(x.v)) {
+            let t = &mut self.cu[j + x.v];
+            *t = (*t).max((q.cu[j] + x.u).min(CAP_U));
+        }
         self.nu = self.nu.max(q.nu + x.u).min(CAP_U);
         self.nv = self.nv.max(q.nv + x.v).min(CAP_V);
         self.tighten_with(Some(ZeroRule {
@@ -368,6 +383,9 @@ impl DensePoly {
                     self.d[srow + i] += U * acf * a.abs();
                 }
             }
+        }
+        for j in 0..f.nv.min(CAP_V.saturating_sub(x.v)) {
+            self.cu[j + x.v] = (f.cu[j] + x.u).min(CAP_U);
         }
         self.nu = (f.nu + x.u).min(CAP_U);
         self.nv = (f.nv + x.v).min(CAP_V);
