@@ -24,7 +24,9 @@
 
 use smallvec::SmallVec;
 
-use crate::eval_bound::{ETA, certified_sign, certified_value, gamma_ratio_upper};
+use crate::eval_bound::{
+    ETA, certified_sign, certified_value, certified_value_pair, gamma_ratio_upper,
+};
 use crate::stats::RootStats;
 
 /// Storage for one node's coefficients: a fixed array (no heap allocation; only the first
@@ -396,27 +398,35 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         } else {
             w_u_a(self.w, node.u1, self.a).next_down()
         };
-        let mut f_lo = f64::NAN;
-        if node.u0 != 0.0 {
+        let (mut f_lo, mut f_hi) = (f64::NAN, f64::NAN);
+        let check_lo = node.u0 != 0.0;
+        let check_hi = hi <= self.t_max && !(node.u1 == 1.0 && self.w_exact);
+        if check_lo && check_hi {
+            // An interior node: both end signs, in one interleaved evaluation.
+            let ((fl, sl), (fh, sh)) = certified_value_pair(self.p, lo, hi);
+            if sl != s_lo || sh != -s_lo {
+                return Err(());
+            }
+            (f_lo, f_hi) = (fl, fh);
+        } else if check_lo {
             let (f, s) = certified_value(self.p, lo);
             if s != s_lo {
                 return Err(());
             }
             f_lo = f;
+        } else if check_hi {
+            let (f, s) = certified_value(self.p, hi);
+            if s != -s_lo {
+                return Err(());
+            }
+            f_hi = f;
         }
-        let mut f_hi = f64::NAN;
         if hi > self.t_max {
             // The single root of the node is ≤ t_max iff p changes sign on (lo, t_max].
             if self.s_max == s_lo {
                 return Ok(None);
             }
             hi = self.t_max;
-        } else if !(node.u1 == 1.0 && self.w_exact) {
-            let (f, s) = certified_value(self.p, hi);
-            if s != -s_lo {
-                return Err(());
-            }
-            f_hi = f;
         }
         if lo >= hi {
             return Err(());

@@ -140,18 +140,23 @@ pub(crate) fn certified_sign(c: &[f64], x: f64) -> i8 {
 /// pass ([`horner_bounded_pair`]).
 #[inline]
 pub(crate) fn certified_sign_pair(c: &[f64], x: f64, y: f64) -> (i8, i8) {
+    let ((_, sx), (_, sy)) = certified_value_pair(c, x, y);
+    (sx, sy)
+}
+
+/// [`certified_value`] at `x` and at `y`, the first tier for both points in one interleaved
+/// pass ([`horner_bounded_pair`]).
+#[inline]
+pub(crate) fn certified_value_pair(c: &[f64], x: f64, y: f64) -> ((f64, i8), (f64, i8)) {
     let ((vx, ex), (vy, ey)) = horner_bounded_pair(c, x, y);
-    let second_tier = |at: f64, s: i8| {
-        if s != 0 {
-            return s;
+    let second_tier = |at: f64, v: f64, err: f64| match sign_if_certain(v, err) {
+        0 => {
+            let (v, err) = comp_horner_bounded(c, at);
+            (v, sign_if_certain(v, err))
         }
-        let (v, err) = comp_horner_bounded(c, at);
-        sign_if_certain(v, err)
+        s => (v, s),
     };
-    (
-        second_tier(x, sign_if_certain(vx, ex)),
-        second_tier(y, sign_if_certain(vy, ey)),
-    )
+    (second_tier(x, vx, ex), second_tier(y, vy, ey))
 }
 
 /// As [`certified_sign`], also returning the computed value `p(x)` (from the tier that
