@@ -51,6 +51,22 @@ fn horner_err(len: usize, s: f64, z: f64) -> f64 {
     gamma_ratio_upper(2 * len) * s * (1.0 + 8.0 * f64::EPSILON) + 2.0 * ETA * z
 }
 
+/// `p(x)` and `p'(x)` by Horner's rule (plain values, no bound), together with the error bound
+/// of [`horner_bounded`] at another point `at`, in one loop: the refinement's first trial
+/// point and its bracket-wide bound, whose dependency chains then overlap.
+#[inline]
+pub(crate) fn horner_derivative_and_bound(c: &[f64], x: f64, at: f64) -> (f64, f64, f64) {
+    let a = at.abs();
+    let (mut v, mut d, mut s, mut z) = (0.0, 0.0, 0.0, 0.0);
+    for &ci in c.iter().rev() {
+        d = d * x + v;
+        v = v * x + ci;
+        s = s * a + ci.abs();
+        z = z * a + 1.0;
+    }
+    (v, d, horner_err(c.len(), s, z))
+}
+
 /// [`horner_bounded`] at two points in one loop: the same operations in the same order for
 /// each point (so the same values and bounds), with the two dependency chains interleaved,
 /// which on a latency-bound CPU costs little more than one evaluation.

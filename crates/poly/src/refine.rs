@@ -9,7 +9,9 @@
 use num_traits::Signed;
 
 use crate::bernstein::Bracket;
-use crate::eval_bound::{certified_sign, certified_value, horner_bounded};
+use crate::eval_bound::{
+    certified_sign, certified_value, horner_bounded, horner_derivative_and_bound,
+};
 use crate::int_poly::IntPoly;
 use crate::root_options::RefineMethod;
 use crate::scalar::{Rat, rat_from_f64, rat_to_f64};
@@ -213,13 +215,15 @@ fn newton(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined {
     };
     let mut step_old = hi - lo;
     let mut step = step_old;
-    let err = bracket_error_bound(p, lo, hi);
+    // The bracket-wide bound (see `bracket_error_bound`) computed with the first trial value.
+    let (f0, df0, err) = horner_derivative_and_bound(p, x, lo.abs().max(hi.abs()));
+    let mut first = Some((f0, df0));
     for _ in 0..MAX_ITERATIONS {
         if narrow_enough(lo, hi, x_tol) {
             return Refined::Root(midpoint_or_lo(lo, hi));
         }
         stats.refine_evals += 1;
-        let (fx, dfx) = horner_with_derivative(p, x);
+        let (fx, dfx) = first.take().unwrap_or_else(|| horner_with_derivative(p, x));
         let (fx, s) = sign_with(p, x, fx, err);
         if s == 0 {
             let bracket = Bracket::new(lo, hi, s_lo);
