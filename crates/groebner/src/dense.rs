@@ -464,6 +464,7 @@ fn r2(
     p: usize,
     q: usize,
     corner: &Corner,
+    variant: Variant,
 ) -> Result<(usize, usize), Dense> {
     let (mut p, mut q) = (p, q);
     slots[p].make_monic();
@@ -483,24 +484,49 @@ fn r2(
         if sp.is_zero() {
             return Ok((q, p));
         }
-        sp.make_monic();
+        // In the solver's variant, unlike Stam's `Scale` (and `r2_tracked`), the remainder is
+        // not made monic after every step, only at the next `r2`: `cancel_with` divides by
+        // the reducer's leading coefficient anyway, the bounds hold for any scaling, and the
+        // zero rule, the noise test and the certificate are scale-invariant. Measured on
+        // teapot.scene (300², one thread): 14% less time per test, 5% fewer certified
+        // systems (the rounding differs).
+        if !variant.lazy_monic {
+            sp.make_monic();
+        }
         if slots[p].lm() < slots[q].lm() {
             std::mem::swap(&mut p, &mut q);
         }
     }
 }
 
+/// How [`stam_dense`] departs from Stam's loop as `stam_tracked_until` runs it (all `false`:
+/// the same arithmetic; the solver sets both, see the comments where they apply).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Variant {
+    /// Stop at the first new element in `K[u]` or constant.
+    pub(crate) stop_at_eliminant: bool,
+    /// Within `R2`, do not make the remainder monic after every step.
+    pub(crate) lazy_monic: bool,
+}
+
+impl Variant {
+    /// The `f64` solver's variant.
+    pub(crate) const SOLVER: Variant = Variant {
+        stop_at_eliminant: true,
+        lazy_monic: true,
+    };
+}
+
 /// Stam's loop (as `stam_tracked_until` with the `is_noise` abort) on the inputs in slots 0
-/// and 1; with `stop_at_eliminant`, stopped at the first new element in `K[u]` or constant
-/// (what the `f64` solver does, see the comment in the loop). On success `order[..len]` lists the slots of the non-zero elements `F_1 … F_N`.
+/// and 1, in the given [`Variant`]. On success `order[..len]` lists the slots of the non-zero elements `F_1 … F_N`.
 pub(crate) fn stam_dense(
     slots: &mut [DensePoly],
     order: &mut [usize; MAX_ELEMENTS],
     corner: &Corner,
-    stop_at_eliminant: bool,
+    variant: Variant,
 ) -> Result<usize, Dense> {
     debug_assert!(slots.len() >= SLOTS, "a workspace has SLOTS slots");
-    let (a, b) = r2(slots, 0, 1, corner)?;
+    let (a, b) = r2(slots, 0, 1, corner, variant)?;
     order[0] = a;
     order[1] = b;
     let mut len = 2;
@@ -513,9 +539,9 @@ pub(crate) fn stam_dense(
         let s = spare;
         set_s_poly_slots(slots, s, order[i], order[i + 1], corner)?;
         slots[s].make_monic();
-        let (gi, s) = r2(slots, s, order[i], corner)?;
+        let (gi, s) = r2(slots, s, order[i], corner, variant)?;
         order[i] = gi;
-        let (gi1, s) = r2(slots, s, order[i + 1], corner)?;
+        let (gi1, s) = r2(slots, s, order[i + 1], corner, variant)?;
         order[i + 1] = gi1;
         if slots[s].is_noise(corner) {
             return Err(Dense::Noise);
@@ -529,7 +555,9 @@ pub(crate) fn stam_dense(
         // bounds. Measured on teapot.scene (300², one thread): 7.0% of the systems
         // certified instead of 2.4%, and 25% less time per test.
         let new = &slots[s];
-        if stop_at_eliminant && (new.is_univariate_nonconstant() || new.is_nonzero_constant()) {
+        if variant.stop_at_eliminant
+            && (new.is_univariate_nonconstant() || new.is_nonzero_constant())
+        {
             break;
         }
         // The next spare: a slot not in use.
@@ -592,7 +620,12 @@ mod tests {
         slots[0].set_input(&grid(f1));
         slots[1].set_input(&grid(f2));
         let mut order = [0; MAX_ELEMENTS];
-        let dense = stam_dense(&mut slots, &mut order, &Corner::new(um, vm), false);
+        let dense = stam_dense(
+            &mut slots,
+            &mut order,
+            &Corner::new(um, vm),
+            Variant::default(),
+        );
         match (general, dense) {
             (None, Err(Dense::Noise)) => {}
             (Some(g), Ok(len)) => {

@@ -21,7 +21,7 @@
 
 use poly::{BiPoly, Poly, RootOptions, RootStats, Scalar, gamma};
 
-use crate::dense::{Corner, DensePoly, MAX_ELEMENTS, SLOTS, stam_dense};
+use crate::dense::{Corner, DensePoly, MAX_ELEMENTS, SLOTS, Variant, stam_dense};
 use crate::error::Error;
 use crate::ray_patch::ray_patch_small;
 use crate::small_resultant::small_bezout_det;
@@ -505,7 +505,7 @@ fn eliminate_stam(
         &mut ws.slots,
         &mut ws.order,
         &Corner::new(u_max, v_max),
-        true,
+        Variant::SOLVER,
     );
     let Ok(len) = found else {
         // Abandoned (noise or capacity): says nothing about the roots.
