@@ -3,7 +3,8 @@
 #   benches/vs-povray.sh [SIZE]        (default 840: SIZE x SIZE pixels, no anti-aliasing)
 # Scenes: torus, whitted-torus, barth, teapot, teapot-resultant (scenes/*.scene and their equivalents
 # benches/pov/*.pov; the teapot's patches are converted from scenes/teapot.bpt here).
-# Both renderers get every core (`nproc`). Prints each wall time and the ratio ours / POV-Ray.
+# Both renderers get every core (`nproc`). Prints each wall time and the ratio ours / POV-Ray,
+# then the tracing phase alone: POV-Ray's "Trace Time" and ours (`--stats`, "trace").
 # Without POV-Ray it says so and exits 0. Images go to a temporary directory, printed at the end.
 set -euo pipefail
 
@@ -30,7 +31,8 @@ awk 'NR == 1 { next }
      NF == 3 { printf "%s  <%s, %s, %s>\n", (n ? "," : ""), $1, $2, $3; n++ }
      END { if (n) print "}" }' "$root/scenes/teapot.bpt" >"$out/teapot-patches.inc"
 
-printf '%-14s %12s %12s %14s\n' scene "POV-Ray (s)" "ours (s)" "ours/POV-Ray"
+printf '%-17s %12s %12s %14s %14s %14s\n' scene "POV-Ray (s)" "ours (s)" "ours/POV-Ray" \
+    "POV trace (s)" "our trace (s)"
 # teapot-resultant is teapot.scene with Kajiya's resultant: the same POV-Ray file.
 for scene in torus whitted-torus barth teapot teapot-resultant; do
     pov=${scene%-resultant}
@@ -40,10 +42,14 @@ for scene in torus whitted-torus barth teapot teapot-resultant; do
         { echo "povray failed on $scene: see $out/$scene-povray.log" >&2; exit 1; }
     t1=$(now)
     "$render" "$root/scenes/$scene.scene" -o "$out/$scene-ours.png" --size "${size}x${size}" \
-        --threads "$threads" >"$out/$scene-ours.log" 2>&1 ||
+        --threads "$threads" --stats >"$out/$scene-ours.log" 2>&1 ||
         { echo "render failed on $scene: see $out/$scene-ours.log" >&2; exit 1; }
     t2=$(now)
-    awk -v s="$scene" -v a="$t0" -v b="$t1" -v c="$t2" \
-        'BEGIN { p = b - a; o = c - b; printf "%-14s %12.3f %12.3f %14.2f\n", s, p, o, o / p }'
+    pov_trace=$(sed -n 's/.*Trace Time:.*(\([0-9.]*\) seconds).*/\1/p' "$out/$scene-povray.log")
+    our_trace=$(awk '$1 == "parse" { for (i = 1; i < NF; i++) if ($i == "trace") print $(i + 1) / 1000 }' \
+        "$out/$scene-ours.log")
+    awk -v s="$scene" -v a="$t0" -v b="$t1" -v c="$t2" -v pt="${pov_trace:-nan}" -v ot="${our_trace:-nan}" \
+        'BEGIN { p = b - a; o = c - b;
+                 printf "%-17s %12.3f %12.3f %14.2f %14s %14s\n", s, p, o, o / p, pt, ot }'
 done
 echo "size ${size}x${size}, $threads threads each; images and logs in $out"
