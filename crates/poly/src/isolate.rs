@@ -38,8 +38,9 @@ enum Range {
     Search { lo: f64, hi: f64 },
 }
 
-/// Validates a query and narrows `(t_min, t_max]` to the root bound.
-fn prepare(p: &Poly<f64>, t_min: f64, t_max: f64, x_tol: f64) -> Result<Range, RootError> {
+/// Validates a query: `Ok(false)` when there is nothing to search (empty interval or a
+/// non-zero constant).
+fn validate(p: &Poly<f64>, t_min: f64, t_max: f64, x_tol: f64) -> Result<bool, RootError> {
     check_finite(p)?;
     if p.is_zero() {
         return Err(RootError::ZeroPolynomial);
@@ -50,7 +51,12 @@ fn prepare(p: &Poly<f64>, t_min: f64, t_max: f64, x_tol: f64) -> Result<Range, R
     if x_tol.is_nan() || x_tol < 0.0 || x_tol.is_infinite() {
         return Err(RootError::InvalidTolerance);
     }
-    if p.degree() == 0 || t_min >= t_max {
+    Ok(p.degree() > 0 && t_min < t_max)
+}
+
+/// Validates a query and narrows `(t_min, t_max]` to the root bound.
+fn prepare(p: &Poly<f64>, t_min: f64, t_max: f64, x_tol: f64) -> Result<Range, RootError> {
+    if !validate(p, t_min, t_max, x_tol)? {
         return Ok(Range::Empty);
     }
     let (mut lo, mut hi) = (t_min, t_max);
@@ -247,9 +253,19 @@ impl Poly<f64> {
         opts: &RootOptions,
         stats: &mut RootStats,
     ) -> Result<Option<f64>, RootError> {
-        let (lo, hi) = match prepare(self, t_min, t_max, opts.x_tol)? {
-            Range::Empty => return Ok(None),
-            Range::Search { lo, hi } => (lo, hi),
+        let (lo, hi) = if self.degree() == 1 && opts.closed_form {
+            // The linear closed form decides the root against the range as it is, infinite
+            // ends included: a root bound would only cost divisions (the tracer queries a
+            // plane on every ray).
+            if !validate(self, t_min, t_max, opts.x_tol)? {
+                return Ok(None);
+            }
+            (t_min, t_max)
+        } else {
+            match prepare(self, t_min, t_max, opts.x_tol)? {
+                Range::Empty => return Ok(None),
+                Range::Search { lo, hi } => (lo, hi),
+            }
         };
         let k = zero_root_order(self, opts);
         if k > 0 {
@@ -539,11 +555,8 @@ fn certified_smallest(
     stats: &mut RootStats,
 ) -> Option<f64> {
     let c = p.coeffs();
-    if !(lo.is_finite() && hi.is_finite()) {
-        stats.exact_fallbacks += 1;
-        return exact_smallest(p, lo, hi, opts.x_tol, stats);
-    }
     if opts.closed_form {
+        // First: the closed forms take infinite ends as they come.
         let decided = match c.len() {
             2 => linear_smallest(c, lo, hi),
             3 => quadratic_smallest(c, lo, hi, opts.x_tol),
@@ -553,6 +566,10 @@ fn certified_smallest(
             stats.closed_form += 1;
             return answer;
         }
+    }
+    if !(lo.is_finite() && hi.is_finite()) {
+        stats.exact_fallbacks += 1;
+        return exact_smallest(p, lo, hi, opts.x_tol, stats);
     }
     let signs = certified_sign_pair(c, lo, hi);
     if hi - lo <= opts.x_tol && signs.0 * signs.1 < 0 {

@@ -131,7 +131,8 @@ impl<F: ImplicitFn> Implicit<F> {
 /// and the solver then skips its own (costlier, `powf`-based) bound.
 pub(crate) fn smallest_root_in(ws: &mut Workspace, lo: f64, hi: f64, x_tol: f64) -> Option<f64> {
     let p = Poly::new(std::mem::take(&mut ws.coeffs));
-    let hi = if hi.is_finite() {
+    let hi = if hi.is_finite() || p.degree() == 1 {
+        // (A linear polynomial's root is decided against an infinite end directly.)
         Some(hi)
     } else if p.degree() == 0 {
         // A non-zero constant has no root; the zero polynomial is refused by the solver.
