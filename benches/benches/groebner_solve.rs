@@ -1,6 +1,7 @@
 //! `groebner::solve` on the ray/piece systems of the teapot (the `tests/bezier_teapot.rs` view
 //! at 32×32, 16×16 pieces per patch, every piece whose box the ray crosses, no hull test), per
-//! method, and the two resultant determinants alone. Times are per system (throughput in
+//! method; the tracer's per-ray call `solve_ray_patch` in a reused workspace (Stam, Bézout);
+//! and the two resultant determinants alone. Times are per system (throughput in
 //! elements). See `paper-notes/groebner.md` §5 and `paper-notes/resultant.md`.
 #![allow(missing_docs, reason = "criterion emits undocumented functions")]
 
@@ -10,8 +11,8 @@ use std::path::Path;
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use glam::DVec3;
 use groebner::{
-    Method, RayPatchSystem, SolveOptions, bezout_resultant_v, ray_patch_system, solve,
-    sylvester_resultant_v,
+    Method, RayPatchSystem, SolveOptions, SolveWorkspace, bezout_resultant_v, ray_patch_system,
+    solve, solve_ray_patch, sylvester_resultant_v,
 };
 use render::Camera;
 use render::scene::{CameraSpec, LookAtCamera};
@@ -45,8 +46,12 @@ fn pieces(k: usize) -> Vec<(Vec<[f64; 3]>, [DVec3; 2], DVec3)> {
     out
 }
 
-/// The systems of every primary ray of a `size`² view against every crossed piece box.
-fn teapot_systems(size: u32) -> Vec<RayPatchSystem<f64>> {
+/// One ray/piece pair: the piece's power-basis points, the ray origin (about the piece's
+/// centre, at the box entry) and direction.
+type RayPiece = (Vec<[f64; 3]>, [f64; 3], [f64; 3]);
+
+/// Every primary ray of a `size`² view against every crossed piece box.
+fn teapot_ray_pieces(size: u32) -> Vec<RayPiece> {
     let spec = CameraSpec::LookAt(LookAtCamera {
         eye: DVec3::new(5.5, -8.0, 6.0),
         look_at: DVec3::new(0.45, 0.0, 1.35),
@@ -76,9 +81,7 @@ fn teapot_systems(size: u32) -> Vec<RayPatchSystem<f64>> {
                     continue;
                 }
                 let o = ray.at(t0) - *centre;
-                if let Ok(sys) = ray_patch_system(power, 4, 4, &o.to_array(), &ray.dir.to_array()) {
-                    out.push(sys);
-                }
+                out.push((power.clone(), o.to_array(), ray.dir.to_array()));
             }
         }
     }
@@ -86,7 +89,11 @@ fn teapot_systems(size: u32) -> Vec<RayPatchSystem<f64>> {
 }
 
 fn groebner_solve(c: &mut Criterion) {
-    let systems = teapot_systems(32);
+    let pairs = teapot_ray_pieces(32);
+    let systems: Vec<RayPatchSystem<f64>> = pairs
+        .iter()
+        .filter_map(|(power, o, d)| ray_patch_system(power, 4, 4, o, d).ok())
+        .collect();
     let mut g = c.benchmark_group("teapot_ray_piece_systems");
     g.throughput(Throughput::Elements(systems.len() as u64));
     g.sample_size(10);
@@ -106,6 +113,26 @@ fn groebner_solve(c: &mut Criterion) {
                     .iter()
                     .map(|s| {
                         solve(black_box(&s.f1), black_box(&s.f2), &opts)
+                            .map_or(0, |x| x.roots.len())
+                    })
+                    .sum::<usize>()
+            })
+        });
+    }
+    // The tracer's per-ray call: the system built and solved in a reused workspace (no
+    // allocation), with t per root.
+    for method in [Method::BezoutResultant, Method::Stam] {
+        let opts = SolveOptions {
+            method,
+            ..SolveOptions::default()
+        };
+        let mut ws = SolveWorkspace::new();
+        g.bench_function(format!("solve_ray_patch_{method:?}"), |b| {
+            b.iter(|| {
+                pairs
+                    .iter()
+                    .map(|(power, o, d)| {
+                        solve_ray_patch(&mut ws, black_box(power), 4, 4, o, d, &opts)
                             .map_or(0, |x| x.roots.len())
                     })
                     .sum::<usize>()

@@ -3,19 +3,23 @@
 //! against a patch of degree ≤ 3 in `u` and `v` (article §4.2, `Groebner()` in `ray3.c`;
 //! `paper-notes/groebner.md` §5).
 //!
-//! Same arithmetic, operation for operation, as the general tracked path (the tests check that
-//! the bases are equal bit for bit), but every polynomial is a `CAP_V × CAP_U` grid of
-//! coefficients and ideal-distance bounds held in the caller's workspace: no allocation, no
-//! generic scalar, no grid reshaping. Why it matters: the general path spent ~75% of a teapot
-//! render in `sub_term`, `make_monic` and `normalize` (allocation and bookkeeping, not
-//! arithmetic).
+//! Every polynomial is a `CAP_V × CAP_U` grid of coefficients and ideal-distance bounds held in
+//! the caller's workspace: no allocation, no generic scalar, no grid reshaping, row loops
+//! written to vectorise. Why it matters: the general path spent ~75% of a teapot render in
+//! `sub_term`, `make_monic` and `normalize` (allocation and bookkeeping, not arithmetic).
+//! In the plain [`Variant`] the arithmetic is that of the general tracked path operation for
+//! operation (a test checks the bases bit for bit on the article's pair), except that bounds
+//! outside the grid are folded into one scalar ([`Corner`]) and the zero rule is re-applied
+//! only where a step changed the polynomial ([`ZeroRule`]); the solver's variant also stops at
+//! the first eliminant and skips `Scale` inside `R2` ([`Variant::SOLVER`]).
 //!
-//! Capacity: `v`-degrees never exceed the inputs' (every leading monomial in the `v`-first
-//! order carries the largest `v`-power, and S-polynomials and reductions never raise it), so 4
-//! rows suffice for inputs of `v`-degree ≤ 3. `u`-degrees grow up to the eliminant's
-//! (≤ 18 for a bicubic, Kajiya's bound) and, on the teapot, never beyond it; a run that would
-//! need more than `CAP_U` columns or more than `MAX_ELEMENTS` basis elements is abandoned
-//! ([`Dense::Full`]). Abandoning is always safe: the solver then uses the resultant.
+//! Capacity: coefficients never reach a `v`-power above the inputs' (every leading monomial in
+//! the `v`-first order carries the largest `v`-power, and S-polynomials and reductions never
+//! raise it), so 4 rows hold them for inputs of `v`-degree ≤ 3; bounds can land higher and are
+//! folded. `u`-degrees of the coefficients grow up to the eliminant's (≤ 18 for a bicubic,
+//! Kajiya's bound); a run that would put a coefficient beyond `CAP_U` columns or need more than
+//! `MAX_ELEMENTS` elements is abandoned ([`Dense::Full`]). Abandoning is always safe: the solver
+//! then uses the resultant.
 
 use poly::Monomial;
 
