@@ -171,7 +171,7 @@ impl<'p> CertifiedSearch<'p> {
             stats,
         );
         let any = !out.is_empty();
-        self.found.extend(out.into_iter().map(Found::Bracket));
+        self.found.extend(out.drain(..).map(Found::Bracket));
         let stuck = match result {
             Ok(()) => return self.first_only && any,
             Err(stuck) => stuck,
