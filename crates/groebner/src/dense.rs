@@ -590,12 +590,12 @@ fn set_s_poly_slots(
     corner: &Corner,
 ) -> Result<(), Dense> {
     assert!(s != f && s != g && f != g, "distinct slots");
-    // Move the target out (a cheap swap with a default-sized value would copy 1.5 kB; the
-    // target is taken by `mem::take` only once per round).
-    let mut target = std::mem::take(&mut slots[s]);
-    let r = target.set_s_poly(&slots[f], &slots[g], corner);
-    slots[s] = target;
-    r
+    // The target mutably and the two others shared, without copying any of them.
+    let (left, rest) = slots.split_at_mut(s);
+    let (target, right) = rest.split_first_mut().expect("s is a slot");
+    let (left, right) = (&*left, &*right);
+    let at = |k: usize| if k < s { &left[k] } else { &right[k - s - 1] };
+    target.set_s_poly(at(f), at(g), corner)
 }
 
 #[cfg(test)]
