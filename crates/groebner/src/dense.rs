@@ -281,6 +281,31 @@ impl DensePoly {
         self.c[k] = 1.0;
     }
 
+    /// Folds the bounds that lie beyond the coefficients of their row into [`DensePoly::far`]
+    /// (sound, see [`Corner`]) and shrinks the grid to the coefficients, so that the loops of
+    /// later steps run over the coefficients only.
+    fn compact(&mut self, corner: &Corner) {
+        let mut nu = 0;
+        let mut nv = 0;
+        for j in 0..self.nv {
+            let row = j * CAP_U;
+            let from = self.cu[j].min(self.nu);
+            for i in from..self.nu {
+                let d = self.d[row + i];
+                if d != 0.0 {
+                    self.far += d * corner.weight(i, j);
+                    self.d[row + i] = 0.0;
+                }
+            }
+            if self.cu[j] > 0 {
+                nu = nu.max(from);
+                nv = j + 1;
+            }
+        }
+        self.nu = nu;
+        self.nv = nv;
+    }
+
     /// `self ← self − c·x·q`, the term at `cancels` zero by construction; then the zero rule
     /// (as `Tracked::sub_term`).
     fn sub_term(
@@ -473,6 +498,10 @@ fn r2(
     let (mut p, mut q) = (p, q);
     slots[p].make_monic();
     slots[q].make_monic();
+    if variant.compact {
+        slots[p].compact(corner);
+        slots[q].compact(corner);
+    }
     if slots[p].lm() < slots[q].lm() {
         std::mem::swap(&mut p, &mut q);
     }
@@ -511,6 +540,8 @@ pub(crate) struct Variant {
     pub(crate) stop_at_eliminant: bool,
     /// Within `R2`, do not make the remainder monic after every step.
     pub(crate) lazy_monic: bool,
+    /// At each `R2`, fold the bounds beyond the coefficients ([`DensePoly::compact`]).
+    pub(crate) compact: bool,
 }
 
 impl Variant {
@@ -518,6 +549,7 @@ impl Variant {
     pub(crate) const SOLVER: Variant = Variant {
         stop_at_eliminant: true,
         lazy_monic: true,
+        compact: true,
     };
 }
 
