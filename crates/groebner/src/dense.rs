@@ -11,7 +11,9 @@
 //! operation (a test checks the bases bit for bit on the article's pair), except that bounds
 //! outside the grid are folded into one scalar ([`Corner`]) and the zero rule is re-applied
 //! only where a step changed the polynomial ([`ZeroRule`]); the solver's variant also stops at
-//! the first eliminant and skips `Scale` inside `R2` ([`Variant::SOLVER`]).
+//! the first eliminant, skips `Scale` inside `R2`, and at every `R2` folds the bounds beyond
+//! each row's coefficients so that the loops run over the coefficients only
+//! ([`Variant::SOLVER`]).
 //!
 //! Capacity: coefficients never reach a `v`-power above the inputs' (every leading monomial in
 //! the `v`-first order carries the largest `v`-power, and S-polynomials and reductions never

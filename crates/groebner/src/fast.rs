@@ -16,7 +16,8 @@
 //!   is solved directly (on `teapot.scene` at 420², before the other changes, 282 of 189 730
 //!   systems, 0.15%, were certified by the general path and not here), and
 //! * the loop stops at its first eliminant and does not rescale after every `R2` step, and
-//!   bounds beyond the grid are folded into one weighted scalar (the `dense` module docs).
+//!   bounds beyond the grid (and, at every `R2`, beyond each row's coefficients) are folded
+//!   into one weighted scalar (the `dense` module docs).
 //!
 //! The Bézout path is the same arithmetic as the general one (identical solutions, tested).
 //!
