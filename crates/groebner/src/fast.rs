@@ -32,8 +32,8 @@ use crate::error::Error;
 use crate::ray_patch::ray_patch_small;
 use crate::small_resultant::small_bezout_det;
 use crate::solve::{
-    CERT_WIDTH_REL, Method, NEAR_DOUBLE_REL, NEWTON_MAX_STEP_REL, NEWTON_STEPS, Root, Solution,
-    SolveOptions, SolveStats, VANISH_REL, Verdict, check_options,
+    CERT_WIDTH_REL, Method, NEAR_DOUBLE_REL, NEWTON_MAX_STEP_REL, Root, Solution, SolveOptions,
+    SolveStats, VANISH_REL, Verdict, check_options, polish_and_verify,
 };
 
 /// A polynomial of degree ≤ 3 in `u` and in `v`: `c[4 * j + i]` is the coefficient of
@@ -315,7 +315,14 @@ fn solve_small(
             let mut rejected = 0;
             if v_candidates(ws, g, u, 2.0 * opts.x_tol, v_search, opts.x_tol) {
                 for i in 0..ws.v_roots.len() {
-                    match polish_and_verify(&system, u, ws.v_roots[i], opts, ub, vb) {
+                    match polish_and_verify(
+                        |k, u, v| system[k].eval_grad(u, v),
+                        u,
+                        ws.v_roots[i],
+                        opts,
+                        ub,
+                        vb,
+                    ) {
                         Some(r) => ws.roots.push(r),
                         None => rejected += 1,
                     }
@@ -685,52 +692,6 @@ fn v_candidates(
         ),
     }
     true
-}
-
-/// As `solve.rs`' `polish_and_verify`.
-fn polish_and_verify(
-    system: &[Small; 2],
-    mut u: f64,
-    mut v: f64,
-    opts: &SolveOptions,
-    ub: [f64; 2],
-    vb: [f64; 2],
-) -> Option<Root> {
-    let max_step = NEWTON_MAX_STEP_REL * (ub[1] - ub[0]).max(vb[1] - vb[0]).max(opts.x_tol);
-    let measure = |e: &[(f64, f64, f64, f64); 2]| {
-        e.iter()
-            .map(|&(f, _, _, a)| f.abs() / a.max(f64::MIN_POSITIVE))
-            .fold(0.0, f64::max)
-    };
-    let mut e = [system[0].eval_grad(u, v), system[1].eval_grad(u, v)];
-    let mut r = measure(&e);
-    for _ in 0..NEWTON_STEPS {
-        let ((f, fu, fv, _), (g, gu, gv, _)) = (e[0], e[1]);
-        let det = fu * gv - fv * gu;
-        if det == 0.0
-            || !det.is_finite()
-            || det.abs() <= f64::EPSILON * (fu * gv).abs().max((fv * gu).abs())
-        {
-            break;
-        }
-        let du = (f * gv - g * fv) / det;
-        let dv = (g * fu - f * gu) / det;
-        if !(du.abs() <= max_step && dv.abs() <= max_step) {
-            break;
-        }
-        let (nu, nv) = (u - du, v - dv);
-        let ne = [system[0].eval_grad(nu, nv), system[1].eval_grad(nu, nv)];
-        let nr = measure(&ne);
-        if nr.is_nan() || nr >= r {
-            break;
-        }
-        (u, v, e, r) = (nu, nv, ne, nr);
-    }
-    let ok = e
-        .iter()
-        .all(|&(f, fu, fv, a)| f.abs() <= opts.f_tol_rel * a + (fu.abs() + fv.abs()) * opts.x_tol);
-    let inside = u >= ub[0] && u <= ub[1] && v >= vb[0] && v <= vb[1];
-    (ok && inside).then_some(Root { u, v })
 }
 
 #[cfg(test)]

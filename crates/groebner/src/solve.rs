@@ -57,7 +57,7 @@ const SHARPEN_BITS: [u32; 3] = [96, 192, 384];
 /// Candidates start within `x_tol` (or the eliminant's conditioning) of the root, so one step
 /// reaches round-off for simple roots; the others cover slow, linear convergence near
 /// tangencies. A step is kept only if it lowers the residual.
-pub(crate) const NEWTON_STEPS: usize = 4;
+const NEWTON_STEPS: usize = 4;
 
 /// Largest Newton step, relative to the box's size: a larger step means the candidate was not
 /// near a root of this system, and polishing must not jump to a different root.
@@ -345,7 +345,14 @@ pub(crate) fn solve_general<T: SolveScalar>(
                 let uf = ut.nearest_f64();
                 rejected = 0;
                 for v in candidates {
-                    match polish_and_verify(&system, uf, v, opts, ub, vb) {
+                    match polish_and_verify(
+                        |k, u, v| eval_grad(&system[k], u, v),
+                        uf,
+                        v,
+                        opts,
+                        ub,
+                        vb,
+                    ) {
                         Some(r) => roots.push(r),
                         None => rejected += 1,
                     }
@@ -834,8 +841,10 @@ fn eval_grad(p: &BiPoly<f64>, u: f64, v: f64) -> (f64, f64, f64, f64) {
 }
 
 /// Newton-polishes `(u, v)` on the system and applies the residual test of [`Root`].
-fn polish_and_verify(
-    system: &[BiPoly<f64>; 2],
+/// `eval_grad(k, u, v)` gives `(F_k, ∂F_k/∂u, ∂F_k/∂v, Σ|terms|)` of equation `k` (0 or 1), so
+/// the general and the per-ray (fixed-size) systems share this one polish.
+pub(crate) fn polish_and_verify(
+    eval_grad: impl Fn(usize, f64, f64) -> (f64, f64, f64, f64),
     mut u: f64,
     mut v: f64,
     opts: &SolveOptions,
@@ -849,7 +858,7 @@ fn polish_and_verify(
             .map(|&(f, _, _, a)| f.abs() / a.max(f64::MIN_POSITIVE))
             .fold(0.0, f64::max)
     };
-    let mut e = [eval_grad(&system[0], u, v), eval_grad(&system[1], u, v)];
+    let mut e = [eval_grad(0, u, v), eval_grad(1, u, v)];
     let mut r = measure(&e);
     for _ in 0..NEWTON_STEPS {
         let ((f, fu, fv, _), (g, gu, gv, _)) = (e[0], e[1]);
@@ -866,7 +875,7 @@ fn polish_and_verify(
             break;
         }
         let (nu, nv) = (u - du, v - dv);
-        let ne = [eval_grad(&system[0], nu, nv), eval_grad(&system[1], nu, nv)];
+        let ne = [eval_grad(0, nu, nv), eval_grad(1, nu, nv)];
         let nr = measure(&ne);
         if nr.is_nan() || nr >= r {
             break;
