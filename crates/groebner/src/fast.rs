@@ -25,15 +25,16 @@
 //! a gcd) and in `poly`'s exact root-isolation fallback when a query needs it
 //! ([`poly::RootStats::exact_fallbacks`]).
 
-use poly::{BiPoly, Poly, RootOptions, RootStats, Scalar, gamma};
+use poly::{BiPoly, Poly, RootStats, Scalar, gamma};
 
 use crate::dense::{Corner, DensePoly, MAX_ELEMENTS, SLOTS, Variant, stam_dense};
 use crate::error::Error;
 use crate::ray_patch::ray_patch_small;
 use crate::small_resultant::small_bezout_det;
 use crate::solve::{
-    CERT_WIDTH_REL, Method, NEAR_DOUBLE_REL, NEWTON_MAX_STEP_REL, Root, Solution, SolveOptions,
-    SolveStats, VANISH_REL, Verdict, check_options, polish_and_verify,
+    Method, NEWTON_MAX_STEP_REL, Root, Solution, SolveOptions, SolveStats, VANISH_REL, Verdict,
+    certified_candidates_into, check_options, near_double_roots_into, polish_and_verify,
+    real_roots_into,
 };
 
 /// A polynomial of degree ≤ 3 in `u` and in `v`: `c[4 * j + i]` is the coefficient of
@@ -298,7 +299,15 @@ fn solve_small(
             &mut ws.root_stats,
             &mut ws.u_roots,
         );
-        near_double_roots(ws, ub, opts.x_tol);
+        near_double_roots_into(
+            &ws.elim,
+            ub,
+            opts.x_tol,
+            &mut ws.scratch,
+            &mut ws.cuts,
+            &mut ws.root_stats,
+            &mut ws.u_roots,
+        );
     }
     stats.u_roots = ws.u_roots.len();
 
@@ -352,62 +361,6 @@ fn solve_small(
     ws.roots
         .sort_unstable_by(|a, b| a.u.total_cmp(&b.u).then(a.v.total_cmp(&b.v)));
     Ok((Verdict::Finite, stats))
-}
-
-/// The real roots of the polynomial in `coeffs` in `range` appended to `out` (as
-/// `SolveScalar::real_roots_in` for `f64`); `coeffs` is lent to a [`Poly`] and given back.
-fn real_roots_into(
-    coeffs: &mut Vec<f64>,
-    range: [f64; 2],
-    x_tol: f64,
-    stats: &mut RootStats,
-    out: &mut Vec<f64>,
-) {
-    let p = Poly::new(std::mem::take(coeffs));
-    if p.degree() > 0 {
-        // Errors are impossible here (finite coefficients and bounds, x_tol > 0, p ≠ 0), and
-        // on an error `out` is left as it was, i.e. no roots (as the general path).
-        let _ = p.real_roots_into(range[0], range[1], &RootOptions::new(x_tol), stats, out);
-    }
-    *coeffs = p.into_coeffs();
-}
-
-/// As `solve.rs`' `near_double_roots` on `ws.elim`, adding to `ws.u_roots`.
-fn near_double_roots(ws: &mut SolveWorkspace, range: [f64; 2], x_tol: f64) {
-    let n = ws.elim.len();
-    if n < 3 {
-        return; // degree < 2
-    }
-    ws.scratch.clear();
-    ws.scratch.extend(
-        ws.elim
-            .iter()
-            .enumerate()
-            .skip(1)
-            .map(|(i, &c)| c * i as f64),
-    );
-    ws.cuts.clear();
-    real_roots_into(
-        &mut ws.scratch,
-        range,
-        x_tol,
-        &mut ws.root_stats,
-        &mut ws.cuts,
-    );
-    let merge = 4.0 * x_tol;
-    for &c in &ws.cuts {
-        let (value, size) = ws
-            .elim
-            .iter()
-            .rev()
-            .fold((0.0, 0.0), |(v, s), &a| (v * c + a, s * c.abs() + a.abs()));
-        if value.abs() <= NEAR_DOUBLE_REL * size
-            && !ws.u_roots.iter().any(|r| (r - c).abs() <= merge)
-        {
-            ws.u_roots.push(c);
-        }
-    }
-    ws.u_roots.sort_unstable_by(f64::total_cmp);
 }
 
 /// The sources of `v` after a resultant or a certified basis: `F1`, `F2` with `Deg_v > 0`,
@@ -565,7 +518,17 @@ fn eliminate_stam(
         elim.clear();
         elim.extend_from_slice(slots[k].row0());
     }
-    if !certified_candidates(ws, bound, ub, x_tol) {
+    let certified = certified_candidates_into(
+        &ws.elim,
+        bound,
+        ub,
+        x_tol,
+        &mut ws.scratch,
+        &mut ws.cuts,
+        &mut ws.root_stats,
+        &mut ws.u_roots,
+    );
+    if !certified {
         return fallback(ws, f1, f2, stats);
     }
     stats.u_degree = ws.elim.len() - 1;
@@ -584,67 +547,6 @@ fn fallback(
 ) -> Result<Elim, Error> {
     stats.fallback = true;
     eliminate_resultant(ws, f1, f2, stats)
-}
-
-/// As `solve.rs`' `certified_candidates` on `ws.elim`, into `ws.u_roots`; `false` when a
-/// component is too wide.
-fn certified_candidates(ws: &mut SolveWorkspace, bound: f64, ub: [f64; 2], x_tol: f64) -> bool {
-    if !bound.is_finite() {
-        return false;
-    }
-    let max_width = CERT_WIDTH_REL * (ub[1] - ub[0]).max(x_tol);
-    ws.cuts.clear();
-    ws.cuts.push(ub[0]);
-    ws.cuts.push(ub[1]);
-    for shift in [-bound, bound] {
-        ws.scratch.clear();
-        ws.scratch.extend_from_slice(&ws.elim);
-        ws.scratch[0] += shift;
-        real_roots_into(&mut ws.scratch, ub, x_tol, &mut ws.root_stats, &mut ws.cuts);
-    }
-    ws.cuts.sort_unstable_by(f64::total_cmp);
-    ws.cuts.dedup();
-    let e = &ws.elim;
-    let inside = |x: f64| horner(e, x).abs() <= bound;
-    let out = &mut ws.u_roots;
-    out.clear();
-    let mut start: Option<f64> = None;
-    let close = |a: f64, b: f64, out: &mut Vec<f64>| -> bool {
-        if b - a > max_width + 2.0 * x_tol {
-            return false;
-        }
-        out.push(0.5 * (a + b));
-        true
-    };
-    for w in ws.cuts.windows(2) {
-        let (a, b) = (w[0], w[1]);
-        if inside(0.5 * (a + b)) {
-            start.get_or_insert(a);
-        } else if let Some(s) = start.take() {
-            if !close(s, a, out) {
-                return false;
-            }
-        } else if a > ub[0] && !close(a, a, out) {
-            return false;
-        }
-    }
-    let ok = if let Some(s) = start {
-        close(s, ub[1], out)
-    } else if inside(ub[1]) {
-        close(ub[1], ub[1], out)
-    } else {
-        true
-    };
-    if !ok {
-        return false;
-    }
-    out.dedup_by(|b, a| (*b - *a).abs() <= 4.0 * x_tol);
-    true
-}
-
-/// `Σ c_i x^i` by Horner (as `Poly::eval`).
-fn horner(c: &[f64], x: f64) -> f64 {
-    c.iter().rev().fold(0.0, |acc, &a| acc * x + a)
 }
 
 /// As `solve.rs`' `v_candidates` for `f64`, into `ws.v_roots`; `false` when `g(u, ·)`

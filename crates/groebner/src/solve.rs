@@ -3,7 +3,7 @@
 //! original equations and verify (article §4.3–4.4; `Roots`, `VPol`, `VRoots` in `ray3.c`).
 //! See `paper-notes/groebner.md` §5 and `paper-notes/resultant.md` §3.
 
-use poly::{BiPoly, Poly, Scalar};
+use poly::{BiPoly, Poly, RootOptions, RootStats, Scalar};
 
 use crate::basis::Basis;
 use crate::buchberger::{buchberger_tracked, reduce_tracked_keep};
@@ -604,50 +604,111 @@ fn certify_f64<T: SolveScalar>(
 pub(crate) const CERT_WIDTH_REL: f64 = 1e-6;
 
 /// The midpoints of the components of `{u ∈ ub : |e(u)| ≤ bound}`, or `None` if one is wider
-/// than [`CERT_WIDTH_REL`] of `ub`.
+/// than [`CERT_WIDTH_REL`] of `ub` ([`certified_candidates_into`] with fresh buffers).
 fn certified_candidates(e: &Poly<f64>, bound: f64, ub: [f64; 2], x_tol: f64) -> Option<Vec<f64>> {
+    let mut out = Vec::new();
+    let (mut scratch, mut cuts, mut stats) = (Vec::new(), Vec::new(), RootStats::default());
+    certified_candidates_into(
+        e.coeffs(),
+        bound,
+        ub,
+        x_tol,
+        &mut scratch,
+        &mut cuts,
+        &mut stats,
+        &mut out,
+    )
+    .then_some(out)
+}
+
+/// The real roots in `range` of the polynomial in `coeffs` (lowest degree first), appended to
+/// `out` as [`SolveScalar::real_roots_in`] finds them; `coeffs` is lent to a [`Poly`] and
+/// given back, so nothing is allocated once the buffers have grown.
+pub(crate) fn real_roots_into(
+    coeffs: &mut Vec<f64>,
+    range: [f64; 2],
+    x_tol: f64,
+    stats: &mut RootStats,
+    out: &mut Vec<f64>,
+) {
+    let p = Poly::new(std::mem::take(coeffs));
+    if p.degree() > 0 {
+        // Errors are impossible here (finite coefficients and bounds, x_tol > 0, p ≠ 0), and
+        // on an error `out` is left as it was, i.e. no roots.
+        let _ = p.real_roots_into(range[0], range[1], &RootOptions::new(x_tol), stats, out);
+    }
+    *coeffs = p.into_coeffs();
+}
+
+/// [`certified_candidates`] of the eliminant with coefficients `e`, into `out` (cleared
+/// first); `false` when a component is wider than [`CERT_WIDTH_REL`] of `ub`. `scratch` and
+/// `cuts` are reusable buffers (nothing is allocated once they have grown).
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the buffers are the caller's workspace fields"
+)]
+pub(crate) fn certified_candidates_into(
+    e: &[f64],
+    bound: f64,
+    ub: [f64; 2],
+    x_tol: f64,
+    scratch: &mut Vec<f64>,
+    cuts: &mut Vec<f64>,
+    stats: &mut RootStats,
+    out: &mut Vec<f64>,
+) -> bool {
+    out.clear();
     if !bound.is_finite() {
-        return None;
+        return false;
     }
     let max_width = CERT_WIDTH_REL * (ub[1] - ub[0]).max(x_tol);
-    let mut cuts = vec![ub[0], ub[1]];
+    cuts.clear();
+    cuts.push(ub[0]);
+    cuts.push(ub[1]);
     for shift in [-bound, bound] {
-        let mut c = e.coeffs().to_vec();
-        c[0] += shift;
-        cuts.extend(f64::real_roots_in(&Poly::new(c), ub, x_tol));
+        scratch.clear();
+        scratch.extend_from_slice(e);
+        scratch[0] += shift;
+        real_roots_into(scratch, ub, x_tol, stats, cuts);
     }
-    cuts.sort_by(f64::total_cmp);
+    cuts.sort_unstable_by(f64::total_cmp);
     cuts.dedup();
-    let inside = |x: f64| e.eval(&x).abs() <= bound;
+    let inside = |x: f64| horner(e, x).abs() <= bound;
     // Components: maximal runs of sub-intervals [cuts[k], cuts[k+1]] whose midpoint is in Z;
     // a cut is itself on the boundary of Z (|e| = bound there, up to x_tol).
-    let mut out = Vec::new();
     let mut start: Option<f64> = None;
-    let close = |a: f64, b: f64, out: &mut Vec<f64>| -> Option<()> {
+    let close = |a: f64, b: f64, out: &mut Vec<f64>| -> bool {
         if b - a > max_width + 2.0 * x_tol {
-            return None;
+            return false;
         }
         out.push(0.5 * (a + b));
-        Some(())
+        true
     };
     for w in cuts.windows(2) {
         let (a, b) = (w[0], w[1]);
         if inside(0.5 * (a + b)) {
             start.get_or_insert(a);
         } else if let Some(s) = start.take() {
-            close(s, a, &mut out)?;
-        } else if a > ub[0] {
+            if !close(s, a, out) {
+                return false;
+            }
+        } else if a > ub[0] && !close(a, a, out) {
             // An isolated boundary point (Z touches it from no side at this resolution).
-            close(a, a, &mut out)?;
+            return false;
         }
     }
-    if let Some(s) = start {
-        close(s, ub[1], &mut out)?;
-    } else if inside(ub[1]) {
-        close(ub[1], ub[1], &mut out)?;
-    }
+    let closed = match start {
+        Some(s) => close(s, ub[1], out),
+        None if inside(ub[1]) => close(ub[1], ub[1], out),
+        None => true,
+    };
     out.dedup_by(|b, a| (*b - *a).abs() <= 4.0 * x_tol);
-    Some(out)
+    closed
+}
+
+/// `Σ c_i x^i` by Horner's rule (as `Poly::eval`).
+pub(crate) fn horner(c: &[f64], x: f64) -> f64 {
+    c.iter().rev().fold(0.0, |acc, &a| acc * x + a)
 }
 
 /// Whether a basis that lacks Theorem 2's `v^J` leading monomial can be trusted to say
@@ -744,15 +805,40 @@ fn near_double_roots<T: SolveScalar>(
     x_tol: f64,
     roots: &mut Vec<f64>,
 ) {
-    if p.degree() < 2 {
-        return;
+    let pf: Vec<f64> = p.coeffs().iter().map(Scalar::nearest_f64).collect();
+    let (mut scratch, mut crit, mut stats) = (Vec::new(), Vec::new(), RootStats::default());
+    near_double_roots_into(
+        &pf,
+        range,
+        x_tol,
+        &mut scratch,
+        &mut crit,
+        &mut stats,
+        roots,
+    );
+}
+
+/// [`near_double_roots`] of the `f64` polynomial with coefficients `e`, added to `roots`;
+/// `scratch` and `crit` are reusable buffers.
+pub(crate) fn near_double_roots_into(
+    e: &[f64],
+    range: [f64; 2],
+    x_tol: f64,
+    scratch: &mut Vec<f64>,
+    crit: &mut Vec<f64>,
+    stats: &mut RootStats,
+    roots: &mut Vec<f64>,
+) {
+    if e.len() < 3 {
+        return; // degree < 2
     }
-    let pf: Poly<f64> = Poly::new(p.coeffs().iter().map(Scalar::nearest_f64).collect());
-    let crit = f64::real_roots_in(&pf.derivative(), range, x_tol);
+    scratch.clear();
+    scratch.extend(e.iter().enumerate().skip(1).map(|(i, &c)| c * i as f64));
+    crit.clear();
+    real_roots_into(scratch, range, x_tol, stats, crit);
     let merge = 4.0 * x_tol;
-    for c in crit {
-        let (value, size) = pf
-            .coeffs()
+    for &c in crit.iter() {
+        let (value, size) = e
             .iter()
             .rev()
             .fold((0.0, 0.0), |(v, s), &a| (v * c + a, s * c.abs() + a.abs()));
@@ -760,7 +846,7 @@ fn near_double_roots<T: SolveScalar>(
             roots.push(c);
         }
     }
-    roots.sort_by(f64::total_cmp);
+    roots.sort_unstable_by(f64::total_cmp);
 }
 
 /// Candidate `v` values at `u` from one source `g`: the real roots of `g(u, ·)` in `vb`, or
