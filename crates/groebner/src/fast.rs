@@ -33,8 +33,8 @@ use crate::ray_patch::ray_patch_small;
 use crate::small_resultant::small_bezout_det;
 use crate::solve::{
     Method, NEWTON_MAX_STEP_REL, Root, Solution, SolveOptions, SolveStats, VANISH_REL, Verdict,
-    certified_candidates_into, check_options, near_double_roots_into, polish_and_verify,
-    real_roots_into,
+    certified_candidates_into, check_options, eval_grad_rows, near_double_roots_into,
+    polish_and_verify, real_roots_into,
 };
 
 /// A polynomial of degree ≤ 3 in `u` and in `v`: `c[4 * j + i]` is the coefficient of
@@ -84,23 +84,9 @@ impl Small {
         })
     }
 
-    /// Value, gradient and term size at `(u, v)` (as `solve.rs`' `eval_grad`).
+    /// Value, gradient and term size at `(u, v)` (`solve.rs`' `eval_grad`).
     fn eval_grad(&self, u: f64, v: f64) -> (f64, f64, f64, f64) {
-        let (au, av) = (u.abs(), v.abs());
-        let (mut f, mut fu, mut fv, mut a) = (0.0, 0.0, 0.0, 0.0);
-        for row in self.c.chunks_exact(4).rev() {
-            let (mut r, mut dr, mut ar) = (0.0, 0.0, 0.0);
-            for &c in row.iter().rev() {
-                dr = dr * u + r;
-                r = r * u + c;
-                ar = ar * au + c.abs();
-            }
-            fv = fv * v + f;
-            f = f * v + r;
-            fu = fu * v + dr;
-            a = a * av + ar;
-        }
-        (f, fu, fv, a)
+        eval_grad_rows(self.c.chunks_exact(4), u, v)
     }
 }
 

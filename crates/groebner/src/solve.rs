@@ -909,9 +909,19 @@ fn v_candidates<T: SolveScalar>(
 /// Value, gradient and term size `A = Σ|a_ij||u|^i|v|^j` of `p` at `(u, v)`, in one nested
 /// Horner pass (no allocation).
 fn eval_grad(p: &BiPoly<f64>, u: f64, v: f64) -> (f64, f64, f64, f64) {
+    eval_grad_rows(p.rows_iter(), u, v)
+}
+
+/// [`eval_grad`] of the polynomial whose rows (coefficients of `v^j`, each lowest power of
+/// `u` first) are `rows`, lowest `j` first.
+pub(crate) fn eval_grad_rows<'a>(
+    rows: impl DoubleEndedIterator<Item = &'a [f64]>,
+    u: f64,
+    v: f64,
+) -> (f64, f64, f64, f64) {
     let (au, av) = (u.abs(), v.abs());
     let (mut f, mut fu, mut fv, mut a) = (0.0, 0.0, 0.0, 0.0);
-    for row in p.rows_iter().rev() {
+    for row in rows.rev() {
         let (mut r, mut dr, mut ar) = (0.0, 0.0, 0.0);
         for &c in row.iter().rev() {
             dr = dr * u + r;
