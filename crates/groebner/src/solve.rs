@@ -789,16 +789,23 @@ fn eliminate_resultant<T: SolveScalar>(
     })
 }
 
-/// Adds to `roots` the real critical points `c` of `p` (roots of `p'`) in `range` where `p`
-/// nearly vanishes, `|p(c)| ≤ NEAR_DOUBLE_REL · Σ|p_i||c|^i`, that are not already within
-/// `4·x_tol` of a root.
+/// Adds to `roots` (the eliminant's real roots in `range`, sorted) the real critical points
+/// `c` of `p` (roots of `p'`) in `range` where `p` nearly vanishes,
+/// `|p(c)| ≤ NEAR_DOUBLE_REL · Σ|p_i||c|^i`, that are not already within `4·x_tol` of a root,
+/// except a critical point that is the only one between two adjacent roots.
 ///
 /// Why: two intersections with the same `u` (a ray across a surface of revolution at the
 /// height of a profile parameter, for instance) make a double root of the eliminant, and the
 /// rounding of `f64` coefficients can split a double root into a complex pair, which a real
 /// root finder then rightly does not report. The critical point remains, with a value at the
-/// rounding level. Spurious candidates cost one `v`-step and are rejected by the residual
-/// test. Exact mode does not need this: exact isolation sees multiple roots exactly.
+/// rounding level. Spurious candidates cost one `v`-step and are almost always rejected by the
+/// residual test — but not between two close simple roots, where the two curves run within
+/// the residual tolerance of each other (two planted roots 2.4e-4 apart in `u` gave a third
+/// "root" midway). Such a critical point is never a double root: a (near-)double root `d`
+/// between two roots `r1 < d < r2` keeps three critical points in `(r1, r2)` — one near `d`,
+/// one on each side by Rolle — under any small perturbation, so one that is alone there is a
+/// simple hump between two roots already found, and is skipped. Exact mode does not need any
+/// of this: exact isolation sees multiple roots exactly.
 fn near_double_roots<T: SolveScalar>(
     p: &Poly<T>,
     range: [f64; 2],
@@ -837,7 +844,25 @@ pub(crate) fn near_double_roots_into(
     crit.clear();
     real_roots_into(scratch, range, x_tol, stats, crit);
     let merge = 4.0 * x_tol;
+    let found = roots.len();
     for &c in crit.iter() {
+        // The eliminant's adjacent roots around c (the candidates added here do not count).
+        let below = roots[..found]
+            .iter()
+            .copied()
+            .filter(|&r| r < c)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let above = roots[..found]
+            .iter()
+            .copied()
+            .filter(|&r| r > c)
+            .fold(f64::INFINITY, f64::min);
+        let alone = below.is_finite()
+            && above.is_finite()
+            && crit.iter().all(|&d| d == c || d <= below || d >= above);
+        if alone {
+            continue;
+        }
         let (value, size) = e
             .iter()
             .rev()
