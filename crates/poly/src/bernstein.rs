@@ -201,12 +201,23 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         let v = vs.at_mut();
         v[0] = p[n];
         let (aa, aw) = (a.abs(), w.abs());
-        for k in (0..n).rev() {
-            let len = n - k;
-            for i in (1..=len).rev() {
-                v[i] = v[i] * a + v[i - 1] * w;
+        if a == 0.0 {
+            // No shift, only the scaling q_j = c_j·w^j: at most j + 1 ≤ n + 1 roundings on
+            // any path, within the 3n the bound allows for this step (the tracer restricts
+            // its polynomials at the search start, so this is its common case).
+            let mut wj = 1.0;
+            for (vj, &c) in v.iter_mut().zip(p) {
+                *vj = c * wj;
+                wj *= w;
             }
-            v[0] = v[0] * a + p[k];
+        } else {
+            for k in (0..n).rev() {
+                let len = n - k;
+                for i in (1..=len).rev() {
+                    v[i] = v[i] * a + v[i - 1] * w;
+                }
+                v[0] = v[0] * a + p[k];
+            }
         }
         // Step 2: power basis on [0, 1] → Bernstein basis: bᵢ = Σ_{j≤i} C(i,j)/C(n,j)·q_j,
         // as a division by C(n,j) (two roundings: the binomial and the quotient) followed by
@@ -749,7 +760,14 @@ mod tests {
     #[test]
     fn bernstein_error_bound_contains_exact_coefficients() {
         let p = Poly::new(vec![-1.3e3, 2.7, 0.41, -7.9, 1.0, 0.031]);
-        let iso = BernsteinIsolator::<[f64; 6]>::new(p.coeffs(), -3.7, 11.3, 1, 1).unwrap();
+        // A shifted interval (Taylor shift) and one starting at 0 (scaling only).
+        for t_min in [-3.7, 0.0] {
+            check_node_bounds(&p, t_min, 11.3);
+        }
+    }
+
+    fn check_node_bounds(p: &Poly<f64>, t_min: f64, t_max: f64) {
+        let iso = BernsteinIsolator::<[f64; 6]>::new(p.coeffs(), t_min, t_max, 1, 1).unwrap();
         let (a, w) = (
             Rat::from_float(iso.a).unwrap(),
             Rat::from_float(iso.w).unwrap(),

@@ -241,12 +241,16 @@ impl<F: ImplicitFn> Implicit<F> {
         // Move the origin to where the ray enters the box (or to the range start): the
         // restricted polynomial is then built from small numbers near the surface, which is
         // what keeps hits exact far from the camera (paper-notes/implicit-surfaces.md §2).
-        let t0 = seg.start;
+        let entry = seg.start;
+        let lo = search_start(range_start, entry, seg.end - entry);
+        // The search then starts at s = 0 of the restriction (the isolator's first node needs
+        // no Taylor shift there).
+        let t0 = entry + lo;
         let o = ray.at(t0);
         self.f
             .restrict(o, ray.dir, &mut ws.restrict, &mut ws.coeffs);
         let hi = seg.end - t0;
-        let lo = search_start(range_start, t0, hi);
+        let lo = 0.0;
         let x_tol = if any_root && hi.is_finite() {
             // Any root proves occlusion: any point of the range will do as its value.
             hi - lo
