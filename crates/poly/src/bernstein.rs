@@ -785,7 +785,7 @@ mod tests {
                 Rat::from_float(node.u0).unwrap(),
                 Rat::from_float(node.u1).unwrap(),
             );
-            let exact = exact_bernstein(&p, &(&a + &w * &u0), &(&w * (&u1 - &u0)));
+            let exact = exact_bernstein(p, &(&a + &w * &u0), &(&w * (&u1 - &u0)));
             let err = iso.threshold(node);
             for (i, e) in exact.iter().enumerate() {
                 let diff = (Rat::from_float(node.v[i]).unwrap() - e).abs();
