@@ -34,7 +34,7 @@ use crate::small_resultant::small_bezout_det;
 use crate::solve::{
     Method, NEWTON_MAX_STEP_REL, Root, Solution, SolveOptions, SolveStats, VANISH_REL, Verdict,
     certified_candidates_into, check_options, eval_grad_rows, near_double_roots_into,
-    polish_and_verify, real_roots_into,
+    polish_and_verify, real_roots_into, verdict_with_zero,
 };
 
 /// A polynomial of degree ≤ 3 in `u` and in `v`: `c[4 * j + i]` is the coefficient of
@@ -369,12 +369,10 @@ fn eliminate_resultant(
 ) -> Result<Elim, Error> {
     if f1.is_zero() || f2.is_zero() {
         let other = if f1.is_zero() { f2 } else { f1 };
-        let verdict = if other.is_zero() || !other.is_constant() {
-            Verdict::Infinite
-        } else {
-            Verdict::NoCommonRoot
-        };
-        return Ok(Elim::Verdict(verdict));
+        return Ok(Elim::Verdict(verdict_with_zero(
+            other.is_zero(),
+            other.is_constant(),
+        )));
     }
     let (d1, d2) = (f1.deg_v(), f2.deg_v());
     if d1 == 0 && d2 == 0 {

@@ -717,6 +717,16 @@ fn is_groebner<T: SolveScalar>(basis: &Basis<T>) -> bool {
     crate::is_groebner_basis(basis.elements())
 }
 
+/// The verdict when `F1` or `F2` is the zero polynomial: the other one's zero set, a whole
+/// curve (or the plane), or nothing for a non-zero constant.
+pub(crate) fn verdict_with_zero(other_is_zero: bool, other_is_constant: bool) -> Verdict {
+    if other_is_zero || !other_is_constant {
+        Verdict::Infinite
+    } else {
+        Verdict::NoCommonRoot
+    }
+}
+
 fn eliminate_resultant<T: SolveScalar>(
     f1: &BiPoly<T>,
     f2: &BiPoly<T>,
@@ -725,12 +735,10 @@ fn eliminate_resultant<T: SolveScalar>(
 ) -> Result<Elimination<T>, Error> {
     if f1.is_zero() || f2.is_zero() {
         let other = if f1.is_zero() { f2 } else { f1 };
-        let verdict = if other.is_zero() || !other.is_constant() {
-            Verdict::Infinite
-        } else {
-            Verdict::NoCommonRoot
-        };
-        return Ok(Elimination::Verdict(verdict));
+        return Ok(Elimination::Verdict(verdict_with_zero(
+            other.is_zero(),
+            other.is_constant(),
+        )));
     }
     if f1.deg_v() == 0 && f2.deg_v() == 0 {
         // Both in u alone: common roots are whole lines u = const, or none.

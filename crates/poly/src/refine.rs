@@ -115,6 +115,21 @@ fn probe(p: &[f64], b: Bracket, x: f64, delta: f64, stats: &mut RootStats) -> Op
     (left_ok && right_ok).then_some(x)
 }
 
+/// A trial point `x` whose sign could not be certified: the root is within `delta` of `x` if
+/// [`probe`] proves it, else the refinement is stuck on `bracket`.
+fn probe_or_stuck(
+    p: &[f64],
+    bracket: Bracket,
+    x: f64,
+    delta: f64,
+    stats: &mut RootStats,
+) -> Refined {
+    match probe(p, bracket, x, delta, stats) {
+        Some(r) => Refined::Root(r),
+        None => Refined::Stuck(bracket),
+    }
+}
+
 /// Half the tolerance, slightly reduced so that `x ± δ` rounded stays within `x_tol` of `x`.
 fn half_tol(x_tol: f64) -> f64 {
     0.5 * x_tol * (1.0 - 4.0 * f64::EPSILON)
@@ -164,11 +179,7 @@ fn illinois(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined
         stats.refine_evals += 1;
         let (fx, s) = sign_with(p, x, horner(p, x), err);
         if s == 0 {
-            let bracket = Bracket::new(lo, hi, s_lo);
-            return match probe(p, bracket, x, delta, stats) {
-                Some(r) => Refined::Root(r),
-                None => Refined::Stuck(bracket),
-            };
+            return probe_or_stuck(p, Bracket::new(lo, hi, s_lo), x, delta, stats);
         }
         if s == s_lo {
             lo = x;
@@ -226,11 +237,7 @@ fn newton(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined {
         let (fx, dfx) = first.take().unwrap_or_else(|| horner_with_derivative(p, x));
         let (fx, s) = sign_with(p, x, fx, err);
         if s == 0 {
-            let bracket = Bracket::new(lo, hi, s_lo);
-            return match probe(p, bracket, x, delta, stats) {
-                Some(r) => Refined::Root(r),
-                None => Refined::Stuck(bracket),
-            };
+            return probe_or_stuck(p, Bracket::new(lo, hi, s_lo), x, delta, stats);
         }
         if s == s_lo {
             lo = x;
