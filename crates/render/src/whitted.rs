@@ -190,6 +190,7 @@ fn shade(
     let cos_alpha = v.dot(n); // ≤ 0 after the flip
     let reflect_dir = v - n * (2.0 * cos_alpha);
     let mut reflect_weight = 0.0;
+    let mut mirror = false; // the reflected ray carries k_s (else only a k_t under TIR)
     if m.illumination >= Illumination::Mirror {
         if m.ks == 0.0 {
             ws.stats.secondary_skipped_material += 1;
@@ -197,6 +198,7 @@ fn shade(
             ws.stats.secondary_skipped_depth += 1;
         } else {
             reflect_weight = m.ks;
+            mirror = true;
         }
     }
 
@@ -221,17 +223,20 @@ fn shade(
                 color += trace(scene, &Ray::new(origin, dir), depth + 1, ws) * m.kt;
             } else {
                 ws.stats.total_internal_reflections += 1;
-                if reflect_weight > 0.0 {
+                if mirror {
                     ws.stats.tir_merged += 1;
-                } else {
-                    ws.stats.refracted_rays += 1;
                 }
                 reflect_weight += m.kt;
             }
         }
     }
     if reflect_weight > 0.0 {
-        ws.stats.reflected_rays += 1;
+        // One ray, counted once: reflected when it carries k_s, else transmitted (TIR).
+        if mirror {
+            ws.stats.reflected_rays += 1;
+        } else {
+            ws.stats.refracted_rays += 1;
+        }
         let origin = offset_ray_origin(p, g.p_err, n, reflect_dir);
         color += trace(scene, &Ray::new(origin, reflect_dir), depth + 1, ws) * reflect_weight;
     }
