@@ -25,7 +25,7 @@
 //! a gcd) and in `poly`'s exact root-isolation fallback when a query needs it
 //! ([`poly::RootStats::exact_fallbacks`]).
 
-use poly::{BiPoly, Poly, RootStats, Scalar, gamma};
+use poly::{BiPoly, Poly, RootStats, gamma};
 
 use crate::dense::{Corner, DensePoly, MAX_ELEMENTS, SLOTS, Variant, stam_dense};
 use crate::error::Error;
@@ -405,11 +405,11 @@ fn eliminate_resultant(
     }
     let det = small_bezout_det(&rows(f1), &rows(f2), d1.max(d2));
     set_trimmed(&mut ws.elim, &det);
-    // trim_negligible: trailing coefficients negligible against the largest.
-    let scale = ws.elim.iter().fold(0.0f64, |m, c| m.max(c.abs()));
-    while ws.elim.last().is_some_and(|c| c.is_negligible(&scale)) {
-        ws.elim.pop();
-    }
+    // As the general path: trailing coefficients negligible against the largest are dropped
+    // (the buffer is lent to a `Poly`, no allocation).
+    ws.elim = Poly::new(std::mem::take(&mut ws.elim))
+        .trim_negligible()
+        .into_coeffs();
     if ws.elim.is_empty() {
         return Ok(Elim::Verdict(Verdict::Infinite));
     }
@@ -432,8 +432,8 @@ fn rows(p: &Small) -> [[f64; 4]; 4] {
 /// `out ← c` without trailing exact zeros (as `Poly::new`).
 fn set_trimmed(out: &mut Vec<f64>, c: &[f64]) {
     out.clear();
-    let n = c.iter().rposition(|&x| x != 0.0).map_or(0, |k| k + 1);
-    out.extend_from_slice(&c[..n]);
+    out.extend_from_slice(c);
+    *out = Poly::new(std::mem::take(out)).into_coeffs();
 }
 
 /// The `f64` Stam path (as `eliminate_groebner_f64` + `certify_f64`): the dense loop, then the
