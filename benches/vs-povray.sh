@@ -19,7 +19,7 @@ fi
 
 threads=$(nproc)
 target=${CARGO_TARGET_DIR:-$root/target}
-(cd "$root" && cargo build --release -q -p render --bin render)
+(cd "$root" && cargo build --release -q -p render-cli --bin render)
 render="$target/release/render"
 out=$(mktemp -d)
 

@@ -41,4 +41,4 @@ pub use crate::scalar::{F64_NEGLIGIBLE_REL, Rat, Scalar, rat_from_f64, rat_to_f6
 pub use crate::stam::StamSturm;
 pub use crate::stats::{RootStats, STATS_DEGREES};
 pub use crate::sturm::SturmSequence;
-pub use crate::univariate::{Bounded, Poly, QPoly, gamma};
+pub use crate::univariate::{Bounded, Poly, QPoly, UNIT_ROUNDOFF, gamma};

@@ -351,11 +351,16 @@ fn trim_relative<T: Scalar>(mut p: Poly<T>, scale: &T) -> Poly<T> {
     p
 }
 
-/// The unit-roundoff multiple `γ(k) = k·u / (1 − k·u)`, `u = ε/2` (Higham, *Accuracy and
-/// Stability of Numerical Algorithms*, §3.1): the relative error bound of `k` chained
-/// floating-point operations.
+/// The unit roundoff `u = ε/2 = 2^-53` of `f64` round-to-nearest: one correctly rounded
+/// operation has relative error at most `u` (Higham, *Accuracy and Stability of Numerical
+/// Algorithms*, §2.2). The one home of this constant for every crate of the workspace.
+pub const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0;
+
+/// The unit-roundoff multiple `γ(k) = k·u / (1 − k·u)`, `u` = [`UNIT_ROUNDOFF`] (Higham,
+/// *Accuracy and Stability of Numerical Algorithms*, §3.1): the relative error bound of `k`
+/// chained floating-point operations.
 pub fn gamma(k: usize) -> f64 {
-    let ku = k as f64 * (f64::EPSILON / 2.0);
+    let ku = k as f64 * UNIT_ROUNDOFF;
     ku / (1.0 - ku)
 }
 

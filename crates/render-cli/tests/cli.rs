@@ -1,5 +1,5 @@
 //! Tests of the `render` binary itself, run in a temporary directory. They live in the
-//! `render` package because Cargo gives `CARGO_BIN_EXE_render` only to the package that owns
+//! `render-cli` package because Cargo gives `CARGO_BIN_EXE_render` only to the package that owns
 //! the binary; everything else about rendering is tested in the workspace's `tests/` crate.
 
 use std::path::Path;
