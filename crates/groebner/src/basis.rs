@@ -1,8 +1,6 @@
 //! [`Basis`]: the output of the Gröbner algorithms, and the article's Theorems 1–3 as queries.
 
-use poly::{BiPoly, Monomial, Poly};
-
-use crate::roots::SolveScalar;
+use poly::{BiPoly, Monomial, Poly, Scalar};
 
 /// A list of non-zero, monic polynomials generating the ideal `(F1, F2, …)`, as produced by
 /// [`stam_basis`](crate::stam_basis) or [`buchberger`](crate::buchberger).
@@ -18,7 +16,7 @@ pub struct Basis<T> {
     elements: Vec<BiPoly<T>>,
 }
 
-impl<T: SolveScalar> Basis<T> {
+impl<T: Scalar> Basis<T> {
     /// Wraps the given polynomials (zero polynomials are dropped, the rest kept in order).
     pub fn new(elements: Vec<BiPoly<T>>) -> Self {
         Basis {

@@ -1,12 +1,12 @@
 //! Buchberger's algorithm `GB0` for any number of bivariate polynomials (article §3), reduced
 //! Gröbner bases, and the Gröbner-basis test. See `paper-notes/groebner.md` §3.
 
-use poly::{BiPoly, Monomial};
+use poly::{BiPoly, Monomial, Scalar};
 
 use crate::basis::Basis;
 use crate::error::Error;
 use crate::reduction::{s_poly_tracked, track_all};
-use crate::roots::SolveScalar;
+
 use crate::tracked::Tracked;
 
 /// Largest basis [`buchberger`] builds before giving up with [`Error::LimitExceeded`].
@@ -58,7 +58,7 @@ pub const BUCHBERGER_MAX_BASIS: usize = 64;
 /// assert_eq!(g.elements()[1], BiPoly::from_terms([(1.0, 2, 0), (-1.0, 0, 0)]));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn buchberger<T: SolveScalar>(polys: &[BiPoly<T>]) -> Result<Basis<T>, Error> {
+pub fn buchberger<T: Scalar>(polys: &[BiPoly<T>]) -> Result<Basis<T>, Error> {
     let g = buchberger_tracked(track_all(polys))?;
     Ok(Basis::new(reduce_tracked(g)))
 }
@@ -74,7 +74,7 @@ pub fn buchberger<T: SolveScalar>(polys: &[BiPoly<T>]) -> Result<Basis<T>, Error
 /// whose leading monomial is a multiple of `LM(h)` leave the reducer set. Without these the
 /// staircase of a degree-18 lex basis leaves hundreds of pairs, each reducing to zero through
 /// coefficients of several hundred bits.
-pub(crate) fn buchberger_tracked<T: SolveScalar>(
+pub(crate) fn buchberger_tracked<T: Scalar>(
     mut input: Vec<Tracked<T>>,
 ) -> Result<Vec<Tracked<T>>, Error> {
     input.retain(|t| !t.is_zero());
@@ -122,7 +122,7 @@ pub(crate) fn buchberger_tracked<T: SolveScalar>(
 }
 
 /// Gebauer–Möller `UPDATE`: adds `h` to the basis (see [`buchberger_tracked`]).
-fn update<T: SolveScalar>(
+fn update<T: Scalar>(
     all: &mut Vec<Tracked<T>>,
     active: &mut Vec<usize>,
     pairs: &mut Vec<(usize, usize)>,
@@ -161,11 +161,11 @@ fn update<T: SolveScalar>(
     active.push(n);
 }
 
-fn lcm_of<T: SolveScalar>(all: &[Tracked<T>], (i, j): (usize, usize)) -> Option<Monomial> {
+fn lcm_of<T: Scalar>(all: &[Tracked<T>], (i, j): (usize, usize)) -> Option<Monomial> {
     Some(all[i].lm()?.lcm(all[j].lm()?))
 }
 
-fn is_unit<T: SolveScalar>(t: &Tracked<T>) -> bool {
+fn is_unit<T: Scalar>(t: &Tracked<T>) -> bool {
     t.poly.is_constant() && !t.is_zero()
 }
 
@@ -179,16 +179,16 @@ fn is_unit<T: SolveScalar>(t: &Tracked<T>) -> bool {
 ///
 /// # Exactness
 /// Exact over `Rat`; over `f64` the crate's relative zero rule applies to the tail reductions.
-pub fn reduce_basis<T: SolveScalar>(basis: &[BiPoly<T>]) -> Vec<BiPoly<T>> {
+pub fn reduce_basis<T: Scalar>(basis: &[BiPoly<T>]) -> Vec<BiPoly<T>> {
     reduce_tracked(track_all(basis))
 }
 
-pub(crate) fn reduce_tracked<T: SolveScalar>(g: Vec<Tracked<T>>) -> Vec<BiPoly<T>> {
+pub(crate) fn reduce_tracked<T: Scalar>(g: Vec<Tracked<T>>) -> Vec<BiPoly<T>> {
     reduce_tracked_keep(g).into_iter().map(|t| t.poly).collect()
 }
 
 /// As [`reduce_tracked`], keeping the error bounds (sorted largest `LM` first).
-pub(crate) fn reduce_tracked_keep<T: SolveScalar>(mut g: Vec<Tracked<T>>) -> Vec<Tracked<T>> {
+pub(crate) fn reduce_tracked_keep<T: Scalar>(mut g: Vec<Tracked<T>>) -> Vec<Tracked<T>> {
     g.retain(|t| !t.is_zero());
     for t in &mut g {
         t.make_monic();
@@ -235,7 +235,7 @@ pub(crate) fn reduce_tracked_keep<T: SolveScalar>(mut g: Vec<Tracked<T>>) -> Vec
 ///
 /// # Exactness
 /// Exact over `Rat`. Over `f64` "zero" is the crate's relative zero rule.
-pub fn is_groebner_basis<T: SolveScalar>(basis: &[BiPoly<T>]) -> bool {
+pub fn is_groebner_basis<T: Scalar>(basis: &[BiPoly<T>]) -> bool {
     let g = track_all(basis);
     (0..g.len()).all(|j| {
         (0..j).all(|i| {

@@ -42,18 +42,26 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+// Layers, top-down (a module uses only the ones below it; `.ci/module_graph.py` checks it):
+//   solving   solve → per_ray → driver → options, scalar
+//   ray/patch ray_patch
+//   resultant resultant → bezout_bicubic
+//   algebra   stam_grid, stam_loop, buchberger → reduction → tracked; basis; bicubic; error
 mod basis;
+mod bezout_bicubic;
+mod bicubic;
 mod buchberger;
-mod dense;
+mod driver;
 mod error;
-mod fast;
+mod options;
+mod per_ray;
 mod ray_patch;
 mod reduction;
 mod resultant;
-mod roots;
-mod small_resultant;
+mod scalar;
 mod solve;
-mod stam;
+mod stam_grid;
+mod stam_loop;
 #[cfg(test)]
 mod testutil;
 mod tracked;
@@ -61,16 +69,16 @@ mod tracked;
 pub use crate::basis::Basis;
 pub use crate::buchberger::{BUCHBERGER_MAX_BASIS, buchberger, is_groebner_basis, reduce_basis};
 pub use crate::error::Error;
-pub use crate::fast::{RayPatchSolution, SolveWorkspace, solve_ray_patch};
+pub use crate::options::{
+    DEFAULT_F_TOL_REL, DEFAULT_X_TOL, Method, Root, Solution, SolveOptions, SolveStats, Verdict,
+};
+pub use crate::per_ray::SolveWorkspace;
 pub use crate::ray_patch::{RayPatchSystem, ray_patch_system};
 pub use crate::reduction::{normal_form, r2, reduction_step, s_polynomial};
 pub use crate::resultant::{
     MAX_MATRIX_SIZE, bezout_matrix_v, bezout_resultant_v, poly_matrix_det, sylvester_matrix_v,
     sylvester_resultant_v,
 };
-pub use crate::roots::SolveScalar;
-pub use crate::solve::{
-    DEFAULT_F_TOL_REL, DEFAULT_X_TOL, Method, Root, Solution, SolveOptions, SolveStats, Verdict,
-    solve,
-};
-pub use crate::stam::{STAM_MAX_ROUNDS, stam_basis};
+pub use crate::scalar::SolveScalar;
+pub use crate::solve::{RayPatchSolution, solve, solve_ray_patch};
+pub use crate::stam_loop::{STAM_MAX_ROUNDS, stam_basis};

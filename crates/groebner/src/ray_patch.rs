@@ -4,8 +4,8 @@
 
 use poly::{BiPoly, Scalar};
 
+use crate::bicubic::{BICUBIC_SIDE, Bicubic};
 use crate::error::Error;
-use crate::fast::Small;
 
 /// The system of article §2 eq. 5 for one ray and one patch, and the map back to `t`.
 ///
@@ -111,23 +111,23 @@ pub fn ray_patch_system<T: Scalar>(
 }
 
 /// [`ray_patch_system`] for a patch of degree ≤ 3 in `u` and `v` over `f64`, in fixed-size
-/// grids (the per-ray path of `fast.rs`); the same coefficients bit for bit. The caller has
+/// grids (the per-ray path, `per_ray.rs`); the same coefficients bit for bit. The caller has
 /// checked `points.len() == stride * rows` with `stride, rows ≤ 4`.
-pub(crate) fn ray_patch_small(
+pub(crate) fn ray_patch_bicubic(
     points: &[[f64; 3]],
     stride: usize,
     origin: &[f64; 3],
     dir: &[f64; 3],
-) -> Result<SmallSystem, Error> {
+) -> Result<BicubicSystem, Error> {
     let (k, a, b) = check_and_pivot(points, origin, dir)?;
     let grid = |it: &mut dyn Iterator<Item = f64>| {
-        let mut c = [0.0; 16];
+        let mut c = [0.0; BICUBIC_SIDE * BICUBIC_SIDE];
         for (idx, x) in it.enumerate() {
-            c[4 * (idx / stride) + idx % stride] = x;
+            c[BICUBIC_SIDE * (idx / stride) + idx % stride] = x;
         }
-        Small { c }
+        Bicubic { c }
     };
-    Ok(SmallSystem {
+    Ok(BicubicSystem {
         f1: grid(&mut eliminated(points, k, a, origin, dir)),
         f2: grid(&mut eliminated(points, k, b, origin, dir)),
         s_pivot: grid(&mut points.iter().map(|p| p[k])),
@@ -136,11 +136,11 @@ pub(crate) fn ray_patch_small(
     })
 }
 
-/// [`RayPatchSystem`] in fixed-size grids (see [`ray_patch_small`]).
-pub(crate) struct SmallSystem {
-    pub(crate) f1: Small,
-    pub(crate) f2: Small,
-    pub(crate) s_pivot: Small,
+/// [`RayPatchSystem`] in fixed-size grids (see [`ray_patch_bicubic`]).
+pub(crate) struct BicubicSystem {
+    pub(crate) f1: Bicubic,
+    pub(crate) f2: Bicubic,
+    pub(crate) s_pivot: Bicubic,
     pub(crate) origin_pivot: f64,
     pub(crate) dir_pivot: f64,
 }

@@ -6,9 +6,8 @@
 //! (coefficients negligible relative to the running size of what formed them) is applied after
 //! every step; the functions here treat their arguments as exact input data.
 
-use poly::BiPoly;
+use poly::{BiPoly, Scalar};
 
-use crate::roots::SolveScalar;
 use crate::tracked::Tracked;
 
 /// One step of the reduction relation `p →F q` (article §3 def. 4): the highest term of `p`
@@ -35,7 +34,7 @@ use crate::tracked::Tracked;
 /// assert!(reduction_step(&q, &[f1, f2]).is_none());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn reduction_step<T: SolveScalar>(p: &BiPoly<T>, basis: &[BiPoly<T>]) -> Option<BiPoly<T>> {
+pub fn reduction_step<T: Scalar>(p: &BiPoly<T>, basis: &[BiPoly<T>]) -> Option<BiPoly<T>> {
     let basis = track_all(basis);
     let mut p = Tracked::new(p.clone());
     p.reduce_step(&basis, None)?;
@@ -54,7 +53,7 @@ pub fn reduction_step<T: SolveScalar>(p: &BiPoly<T>, basis: &[BiPoly<T>]) -> Opt
 /// # Complexity
 /// One top-down sweep: each term of `p` and of the subtracted multiples is visited once, each
 /// visit tries every basis element (O(|F|) divisibility tests).
-pub fn normal_form<T: SolveScalar>(p: &BiPoly<T>, basis: &[BiPoly<T>]) -> BiPoly<T> {
+pub fn normal_form<T: Scalar>(p: &BiPoly<T>, basis: &[BiPoly<T>]) -> BiPoly<T> {
     let basis = track_all(basis);
     let mut p = Tracked::new(p.clone());
     p.reduce_fully(&basis);
@@ -80,7 +79,7 @@ pub fn normal_form<T: SolveScalar>(p: &BiPoly<T>, basis: &[BiPoly<T>]) -> BiPoly
 /// let sp = s_polynomial(&f1, &f2);
 /// assert_eq!(sp, BiPoly::from_terms([(1.0, 3, 1), (1.0, 2, 1), (-1.0, 0, 1), (-1.0, 5, 0)]));
 /// ```
-pub fn s_polynomial<T: SolveScalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> BiPoly<T> {
+pub fn s_polynomial<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> BiPoly<T> {
     Tracked::s_poly(&Tracked::new(f.clone()), &Tracked::new(g.clone())).poly
 }
 
@@ -117,14 +116,14 @@ pub fn s_polynomial<T: SolveScalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> BiPoly<T> {
 /// assert_eq!(p, BiPoly::from_terms([(1.0, 0, 1), (1.0, 3, 0), (1.0, 1, 0)])); // monic
 /// assert_eq!(q, BiPoly::from_terms([(1.0, 4, 0), (-2.0, 0, 0)]));
 /// ```
-pub fn r2<T: SolveScalar>(p: &BiPoly<T>, q: &BiPoly<T>) -> (BiPoly<T>, BiPoly<T>) {
+pub fn r2<T: Scalar>(p: &BiPoly<T>, q: &BiPoly<T>) -> (BiPoly<T>, BiPoly<T>) {
     let (mut p, mut q) = r2_tracked(Tracked::new(p.clone()), Tracked::new(q.clone()));
     p.make_monic();
     q.make_monic();
     (p.poly, q.poly)
 }
 
-pub(crate) fn track_all<T: SolveScalar>(basis: &[BiPoly<T>]) -> Vec<Tracked<T>> {
+pub(crate) fn track_all<T: Scalar>(basis: &[BiPoly<T>]) -> Vec<Tracked<T>> {
     basis
         .iter()
         .filter(|g| !g.is_zero())
@@ -133,12 +132,12 @@ pub(crate) fn track_all<T: SolveScalar>(basis: &[BiPoly<T>]) -> Vec<Tracked<T>> 
 }
 
 /// `SP(f, g)` on tracked polynomials (see [`s_polynomial`]).
-pub(crate) fn s_poly_tracked<T: SolveScalar>(f: &Tracked<T>, g: &Tracked<T>) -> Tracked<T> {
+pub(crate) fn s_poly_tracked<T: Scalar>(f: &Tracked<T>, g: &Tracked<T>) -> Tracked<T> {
     Tracked::s_poly(f, g)
 }
 
 /// `R2` on tracked polynomials (see [`r2`]), results monic.
-pub(crate) fn r2_tracked<T: SolveScalar>(
+pub(crate) fn r2_tracked<T: Scalar>(
     mut p: Tracked<T>,
     mut q: Tracked<T>,
 ) -> (Tracked<T>, Tracked<T>) {

@@ -7,8 +7,8 @@
 
 use poly::{BiPoly, Poly, Scalar};
 
+use crate::bezout_bicubic::bezout_bicubic_resultant;
 use crate::error::Error;
-use crate::small_resultant::small_bezout_resultant;
 
 /// Largest matrix [`poly_matrix_det`] accepts. The division-free expansion costs
 /// O(n·2ⁿ) polynomial products (see its `# Complexity`); 16 allows `v`-degrees up to 8 in each
@@ -119,7 +119,7 @@ pub fn bezout_resultant_v<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> Result<Pol
         return Ok(Poly::constant(T::one()));
     }
     // The ray/bicubic case, per ray: the same determinant in fixed-size arrays.
-    if let Some(r) = small_bezout_resultant(f, g) {
+    if let Some(r) = bezout_bicubic_resultant(f, g) {
         return Ok(r);
     }
     let det = poly_matrix_det(&bezout_matrix_v(f, g))?;

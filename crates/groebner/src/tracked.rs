@@ -32,7 +32,7 @@
 //! At a common root `(u_r, v_r)` of the inputs every `p*` vanishes, so
 //! `|p̂(u_r, v_r)| ≤ Σ d_ij |u_r|^i |v_r|^j` ([`Tracked::ideal_distance_at`]): an `f64`
 //! eliminant larger than that bound at `u` proves that no root has this `u`, and a constant
-//! larger than its bound proves the ray misses (`solve.rs`, `certify_f64`). An earlier version
+//! larger than its bound proves the ray misses ([`certificate_bound`], used by the solver). An earlier version
 //! also propagated the multipliers' own errors into a bound on the distance to the exact run
 //! (and zeroed against that); on the teapot view of `paper-notes/groebner.md` §5 it zeroed more
 //! coefficients and certified 1% of the systems, against 13% with this bound.
@@ -42,9 +42,7 @@
 //! [`Rat`]: poly::Rat
 
 use num_traits::Signed;
-use poly::{BiPoly, Monomial, Scalar};
-
-use crate::roots::SolveScalar;
+use poly::{BiPoly, Monomial, Scalar, UNIT_ROUNDOFF, gamma};
 
 /// Slack factor of the zero rule (see the module docs): a coefficient is zero when
 /// `|c| ≤ ZERO_ERR_FACTOR · d`. The bound `d` is first-order; 4 covers the neglected
@@ -60,8 +58,20 @@ pub(crate) const ZERO_ERR_FACTOR: f64 = 4.0;
 /// certified with hits was stopped, and the `f64` Stam solve took ~40% less time than with `1`.
 pub(crate) const NOISE_ABORT_REL: f64 = 1e-4;
 
-/// Unit round-off of `f64`, `2⁻⁵³`.
-const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0;
+/// Safety factor of the certificate ([`certificate_bound`]): the ideal-distance bound and the
+/// evaluation bound are first order in the unit round-off; doubling them covers the neglected
+/// second-order terms for any run short enough to be certified at all (a bound that is not
+/// small against the element is useless anyway).
+pub(crate) const CERT_SAFETY: f64 = 2.0;
+
+/// The certificate's bound on `|ĝ(u, v)|` at a common root in the box `|u| ≤ u_max`,
+/// `|v| ≤ v_max` for a basis element `ĝ` computed in `f64`: its ideal distance there
+/// ([`Tracked::ideal_distance_at`]), plus the rounding of evaluating `ĝ` itself (`γ(2n)` times
+/// the size of its terms `Σ|c_ij| u_max^i v_max^j`, `n = stride + rows` of its grid), times
+/// [`CERT_SAFETY`]. One formula for the general and the per-ray (fixed-grid) loops.
+pub(crate) fn certificate_bound(ideal_distance: f64, size: f64, extent: usize) -> f64 {
+    CERT_SAFETY * (ideal_distance + gamma(2 * extent) * size)
+}
 
 /// A dense grid of bounds indexed like a [`BiPoly`] (`i` power of `u`, `j` of `v`), growing on
 /// demand; entries outside are zero.
@@ -147,7 +157,7 @@ pub(crate) struct Tracked<T> {
     dist: ErrGrid<T>,
 }
 
-impl<T: SolveScalar> Tracked<T> {
+impl<T: Scalar> Tracked<T> {
     /// An input polynomial: its coefficients are exact data (bound 0).
     pub(crate) fn new(poly: BiPoly<T>) -> Self {
         Tracked {
@@ -304,6 +314,18 @@ impl<T: SolveScalar> Tracked<T> {
         total
     }
 
+    /// [`certificate_bound`] of this element on the box `|u| ≤ u_max`, `|v| ≤ v_max` (finite).
+    pub(crate) fn certificate_bound(&self, u_max: f64, v_max: f64) -> f64 {
+        let corner = |x: f64| T::from_f64(x).expect("a finite box corner");
+        let distance = self.ideal_distance_at(&corner(u_max), &corner(v_max));
+        let size = self.poly.map(Scalar::nearest_f64).eval_abs(u_max, v_max);
+        certificate_bound(
+            distance.nearest_f64(),
+            size,
+            self.poly.stride() + self.poly.rows(),
+        )
+    }
+
     /// Whether the ideal-distance bound at `(u_max, v_max)` reaches [`NOISE_ABORT_REL`] of the
     /// size of the polynomial's terms there (`Σ|c_ij| u_max^i v_max^j`). False for exact
     /// scalars.
@@ -367,8 +389,8 @@ impl<T: SolveScalar> Tracked<T> {
     }
 }
 
-fn unit_roundoff<T: SolveScalar>() -> T {
-    T::from_f64(UNIT_ROUNDOFF).expect("representable")
+fn unit_roundoff<T: Scalar>() -> T {
+    T::from_f64(UNIT_ROUNDOFF).expect("2⁻⁵³ is representable")
 }
 
 #[cfg(test)]

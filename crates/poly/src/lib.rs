@@ -19,8 +19,10 @@ mod bivariate;
 mod certified;
 mod closed_form;
 mod eval_bound;
+mod exact_bisection;
 mod int_poly;
 mod isolate;
+mod near_zero;
 mod ops;
 mod refine;
 mod root_error;
@@ -34,6 +36,9 @@ pub mod testutil;
 mod univariate;
 
 pub use crate::bivariate::{BiPoly, Monomial, QBiPoly};
+pub use crate::near_zero::{
+    NearZeroBuffers, near_double_roots_into, near_zero_components_into, real_roots_of_coeffs_into,
+};
 pub use crate::root_error::RootError;
 pub use crate::root_interval::RootInterval;
 pub use crate::root_options::{IsolationMethod, RefineMethod, RootOptions};

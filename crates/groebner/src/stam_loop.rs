@@ -1,12 +1,12 @@
 //! Stam's simplified `GB0` for exactly two polynomials (article §4.2, `Groebner()` in
 //! `ray3.c`). See `paper-notes/groebner.md` §4.
 
-use poly::BiPoly;
+use poly::{BiPoly, Scalar};
 
 use crate::basis::Basis;
 use crate::error::Error;
 use crate::reduction::{r2_tracked, s_poly_tracked};
-use crate::roots::SolveScalar;
+
 use crate::tracked::Tracked;
 
 /// Upper bound on the rounds of Stam's loop.
@@ -62,7 +62,7 @@ pub const STAM_MAX_ROUNDS: usize = 256;
 /// assert_eq!(e.degree(), 8); // u⁸ − u⁵ − u⁴ + u³ + 2u² − 1
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn stam_basis<T: SolveScalar>(f1: &BiPoly<T>, f2: &BiPoly<T>) -> Result<Basis<T>, Error> {
+pub fn stam_basis<T: Scalar>(f1: &BiPoly<T>, f2: &BiPoly<T>) -> Result<Basis<T>, Error> {
     let g = stam_tracked(Tracked::new(f1.clone()), Tracked::new(f2.clone()))?;
     Ok(Basis::new(
         g.into_iter()
@@ -75,7 +75,7 @@ pub fn stam_basis<T: SolveScalar>(f1: &BiPoly<T>, f2: &BiPoly<T>) -> Result<Basi
 }
 
 /// The loop on tracked polynomials; returns the non-zero elements.
-pub(crate) fn stam_tracked<T: SolveScalar>(
+pub(crate) fn stam_tracked<T: Scalar>(
     f1: Tracked<T>,
     f2: Tracked<T>,
 ) -> Result<Vec<Tracked<T>>, Error> {
@@ -84,7 +84,7 @@ pub(crate) fn stam_tracked<T: SolveScalar>(
 
 /// [`stam_tracked`] that gives up (`Ok(None)`) as soon as `abort` holds for a new element:
 /// the `f64` solver stops a run whose elements are already dominated by their error bounds.
-pub(crate) fn stam_tracked_until<T: SolveScalar>(
+pub(crate) fn stam_tracked_until<T: Scalar>(
     f1: Tracked<T>,
     f2: Tracked<T>,
     abort: impl Fn(&Tracked<T>) -> bool,

@@ -1,5 +1,5 @@
 //! Stam's `f64` loop on fixed-capacity dense grids: the per-ray form of
-//! [`Tracked`](crate::tracked::Tracked) and [`stam_tracked_until`](crate::stam) for a ray
+//! [`Tracked`](crate::tracked::Tracked) and [`stam_tracked_until`](crate::stam_loop) for a ray
 //! against a patch of degree ≤ 3 in `u` and `v` (article §4.2, `Groebner()` in `ray3.c`;
 //! `paper-notes/groebner.md` §5).
 //!
@@ -23,7 +23,9 @@
 //! `MAX_ELEMENTS` elements is abandoned ([`Dense::Full`]). Abandoning is always safe: the solver
 //! then uses the resultant.
 
-use poly::Monomial;
+use poly::{Monomial, UNIT_ROUNDOFF};
+
+use crate::tracked::{NOISE_ABORT_REL, ZERO_ERR_FACTOR, certificate_bound};
 
 /// Columns (powers `u⁰ … u^(CAP_U−1)`) of a dense grid.
 pub(crate) const CAP_U: usize = 32;
@@ -36,9 +38,6 @@ pub(crate) const MAX_ELEMENTS: usize = 12;
 
 /// Slots used by a run: the elements plus one spare for the new S-polynomial.
 pub(crate) const SLOTS: usize = MAX_ELEMENTS + 1;
-
-/// Unit round-off `2⁻⁵³`.
-const U: f64 = f64::EPSILON / 2.0;
 
 /// Why a dense run stopped without a basis.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -274,7 +273,11 @@ impl DensePoly {
             );
             for (c, d) in c.iter_mut().zip(d.iter_mut()) {
                 *c /= lc;
-                let add = if *c != 0.0 { U * c.abs() } else { 0.0 };
+                let add = if *c != 0.0 {
+                    UNIT_ROUNDOFF * c.abs()
+                } else {
+                    0.0
+                };
                 *d = *d * inv + add;
             }
         }
@@ -347,7 +350,7 @@ impl DensePoly {
             // Branch-free (vectorises); entries where q has neither a coefficient nor a
             // bound add nothing, as in `Tracked::sub_term`.
             for (((pc, pd), &qc), &dq) in pc.iter_mut().zip(pd.iter_mut()).zip(qc).zip(qd) {
-                let add = ac * dq + U * (pc.abs() + two_ac * qc.abs());
+                let add = ac * dq + UNIT_ROUNDOFF * (pc.abs() + two_ac * qc.abs());
                 *pd += if qc != 0.0 || dq != 0.0 { add } else { 0.0 };
                 *pc += qc * neg;
             }
@@ -411,7 +414,7 @@ impl DensePoly {
             for i in 0..stride {
                 let a = f.c[frow + i];
                 if a != 0.0 {
-                    self.d[srow + i] += U * acf * a.abs();
+                    self.d[srow + i] += UNIT_ROUNDOFF * acf * a.abs();
                 }
             }
         }
@@ -451,6 +454,17 @@ impl DensePoly {
         size
     }
 
+    /// The certificate's bound for this element on the box `|u| ≤ u_max`, `|v| ≤ v_max`
+    /// ([`certificate_bound`], as for a `Tracked` element).
+    pub(crate) fn certificate_bound(&self, u_max: f64, v_max: f64) -> f64 {
+        let (stride, rows) = self.grid_extent();
+        certificate_bound(
+            self.ideal_distance_at(u_max, v_max),
+            self.size_at(u_max, v_max),
+            stride + rows,
+        )
+    }
+
     /// As `Tracked::is_noise`.
     fn is_noise(&self, corner: &Corner) -> bool {
         if self.is_zero() {
@@ -460,8 +474,6 @@ impl DensePoly {
         self.ideal_distance_at(u_max, v_max) >= self.size_at(u_max, v_max) * NOISE_ABORT_REL
     }
 }
-
-use crate::tracked::{NOISE_ABORT_REL, ZERO_ERR_FACTOR};
 
 /// Where a reduction step applies the zero rule: the term it cancels (an index), and the
 /// rectangle of rows and columns its update touched. Elsewhere coefficients and bounds are
@@ -635,7 +647,7 @@ fn set_s_poly_slots(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::stam::stam_tracked_until;
+    use crate::stam_loop::stam_tracked_until;
     use crate::testutil::article_pair;
     use crate::tracked::Tracked;
     use poly::BiPoly;
