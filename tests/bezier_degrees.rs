@@ -7,14 +7,14 @@ use std::path::Path;
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use render::Camera;
 use render::geometry::Ray;
 use render::glam::DVec3;
-use render::scene::{ShapeKind, load};
-use render::surface::{BezierMesh, BezierPatch, HIST_BINS, PatchMethod, PatchStats};
+use render::scene::{ControlNet, ShapeKind, load};
+use render::surface::BezierMesh;
+use render::{Camera, HIST_BINS, PatchMethod, PatchStats};
 
 /// The patch and camera of `scenes/NAME.scene`.
-fn scene_patch(name: &str) -> (BezierPatch, Camera) {
+fn scene_patch(name: &str) -> (ControlNet, Camera) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../scenes/{name}.scene"));
     let scene = load(&path).unwrap_or_else(|e| panic!("{e}"));
     let patch = scene
@@ -31,12 +31,12 @@ fn scene_patch(name: &str) -> (BezierPatch, Camera) {
 /// Traces a 24×24 view of the patch with `method`; returns the statistics, the hit count and
 /// the rays (pixel centres) whose solves did not all report `u_degree`.
 fn trace(
-    patch: &BezierPatch,
+    patch: &ControlNet,
     cam: &Camera,
     method: PatchMethod,
     u_degree: usize,
 ) -> (PatchStats, usize, Vec<(f64, f64)>) {
-    let mesh = BezierMesh::new(vec![patch.clone()], method).expect("one patch");
+    let mesh = BezierMesh::new(std::slice::from_ref(patch), method).expect("one patch");
     let mut stats = PatchStats::default();
     let mut hits = 0;
     let mut odd = Vec::new();
@@ -99,7 +99,7 @@ fn check_degrees(name: &str, u_degree: usize) {
                 "{name} {method:?}: {} rays off the table: {odd:?}\n{stats}",
                 odd.len()
             );
-            let exact = BezierMesh::new(vec![patch.clone()], PatchMethod::GroebnerExact)
+            let exact = BezierMesh::new(std::slice::from_ref(&patch), PatchMethod::GroebnerExact)
                 .expect("one patch");
             for &(px, py) in &odd {
                 let mut ray_stats = PatchStats::default();
@@ -157,9 +157,10 @@ fn generic_random_bicubic_keeps_degree_18_and_matches_newton() {
                 )
         })
         .collect();
-    let patch = BezierPatch::new(3, 3, pts).expect("finite net");
-    let mesh = BezierMesh::with_subdivision(vec![patch.clone()], PatchMethod::Resultant, 1)
-        .expect("one patch");
+    let patch = ControlNet::new(3, 3, pts).expect("finite net");
+    let mesh =
+        BezierMesh::with_subdivision(std::slice::from_ref(&patch), PatchMethod::Resultant, 1)
+            .expect("one patch");
     let mut stats = PatchStats::default();
     let mut hits = 0;
     for k in 0..40 {
@@ -200,7 +201,7 @@ fn exact_reference_modes_agree_with_f64() {
         PatchMethod::GroebnerExact,
         PatchMethod::ResultantExact,
     ]
-    .map(|m| BezierMesh::new(vec![patch.clone()], m).expect("one patch"));
+    .map(|m| BezierMesh::new(std::slice::from_ref(&patch), m).expect("one patch"));
     let mut hits = 0;
     for (x, y) in [
         (12.5, 12.5),

@@ -5,18 +5,18 @@
 
 use std::path::Path;
 
-use render::Camera;
 use render::geometry::Ray;
 use render::glam::DVec3;
-use render::scene::{CameraSpec, LookAtCamera};
-use render::surface::{BezierMesh, BezierPatch, PatchMethod, PatchStats, parse_bpt};
+use render::scene::{CameraSpec, ControlNet, LookAtCamera, parse_bpt};
+use render::surface::{BezierMesh, BezierPatch};
+use render::{Camera, PatchMethod, PatchStats};
 
 /// Relative agreement required between the two methods' `t` (and with the reference): both
 /// solve to `x_tol = 1e-10` in the parameters and pass the 3-D residual test at `1e-7` of the
 /// sub-patch scale, so hits on the same surface point agree far better than this.
 const T_AGREE_REL: f64 = 1e-6;
 
-pub(crate) fn teapot_patches() -> Vec<BezierPatch> {
+pub(crate) fn teapot_patches() -> Vec<ControlNet> {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/teapot.bpt");
     let text = std::fs::read_to_string(&path).expect("scenes/teapot.bpt is readable");
     parse_bpt(&text).expect("teapot.bpt parses")
@@ -35,10 +35,11 @@ fn teapot_camera(size: u32) -> Camera {
 
 /// Nearest hit among all patches by Newton's method on `S(u, v) − O − t·D = 0` from a dense
 /// grid of seeds: independent of the elimination (no `F1`, `F2`, no `groebner`).
-pub(crate) fn newton_reference(patches: &[BezierPatch], ray: &Ray) -> Option<f64> {
+pub(crate) fn newton_reference(patches: &[ControlNet], ray: &Ray) -> Option<f64> {
     const SEEDS: usize = 9;
     let mut best: Option<f64> = None;
-    for patch in patches {
+    for net in patches {
+        let patch = BezierPatch::new(net);
         for a in 0..SEEDS {
             for b in 0..SEEDS {
                 let (mut u, mut v) = (
@@ -101,8 +102,8 @@ const GROEBNER_F64_DEFECT: &str = "uncertified f64 Gröbner result";
 #[test]
 fn groebner_and_resultant_agree_on_every_primary_ray_at_64() {
     let patches = teapot_patches();
-    let g = BezierMesh::new(patches.clone(), PatchMethod::Groebner).expect("non-empty");
-    let r = BezierMesh::new(patches, PatchMethod::Resultant).expect("non-empty");
+    let g = BezierMesh::new(&patches, PatchMethod::Groebner).expect("non-empty");
+    let r = BezierMesh::new(&patches, PatchMethod::Resultant).expect("non-empty");
     let cam = teapot_camera(64);
     let (mut sg, mut sr) = (PatchStats::default(), PatchStats::default());
     for y in 0..64 {
@@ -137,7 +138,7 @@ fn groebner_and_resultant_agree_on_every_primary_ray_at_64() {
 /// Every primary ray of the 64×64 view against the independent Newton reference.
 fn agrees_with_newton_at_64(method: PatchMethod, every: usize) {
     let patches = teapot_patches();
-    let mesh = BezierMesh::new(patches.clone(), method).expect("non-empty");
+    let mesh = BezierMesh::new(&patches, method).expect("non-empty");
     let cam = teapot_camera(64);
     let mut stats = PatchStats::default();
     let (mut hits, mut checked) = (0, 0);
@@ -195,10 +196,11 @@ fn groebner_agrees_with_newton_on_primary_rays_at_64() {
 fn seams_hold(method: PatchMethod) {
     let patches = teapot_patches();
     let eye = DVec3::new(5.5, -8.0, 6.0);
-    let mesh = BezierMesh::new(patches.clone(), method).expect("non-empty");
+    let mesh = BezierMesh::new(&patches, method).expect("non-empty");
     let mut stats = PatchStats::default();
     let mut tested = 0;
-    for patch in &patches {
+    for net in &patches {
+        let patch = BezierPatch::new(net);
         for k in 0..=4 {
             let s = k as f64 / 4.0;
             for (u, v) in [(s, 0.0), (s, 1.0), (0.0, s), (1.0, s)] {
@@ -232,7 +234,7 @@ fn rays_aimed_at_seams_do_not_fall_through_groebner() {
 fn special_rays(method: PatchMethod) {
     let patches = teapot_patches();
     {
-        let mesh = BezierMesh::new(patches.clone(), method).expect("non-empty");
+        let mesh = BezierMesh::new(&patches, method).expect("non-empty");
         let mut stats = PatchStats::default();
         let mut nearest = |o: DVec3, d: DVec3| {
             mesh.nearest_hit(&Ray::new(o, d), 0.0..f64::INFINITY, &mut stats, false)
@@ -354,8 +356,8 @@ fn teapot_scene_renders_without_nan() {
 #[test]
 fn exact_resultant_agrees_with_f64_on_two_rays() {
     let patches = teapot_patches();
-    let f = BezierMesh::new(patches.clone(), PatchMethod::Resultant).expect("non-empty");
-    let q = BezierMesh::new(patches, PatchMethod::ResultantExact).expect("non-empty");
+    let f = BezierMesh::new(&patches, PatchMethod::Resultant).expect("non-empty");
+    let q = BezierMesh::new(&patches, PatchMethod::ResultantExact).expect("non-empty");
     let cam = teapot_camera(64);
     for (x, y) in [(30.5, 36.5), (20.5, 20.5)] {
         let ray = cam.ray(x, y);

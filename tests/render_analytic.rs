@@ -175,11 +175,12 @@ fn torus_depth_matches_exact_root() {
 #[test]
 fn spawned_rays_do_not_reintersect() {
     let mut rng = ChaCha8Rng::seed_from_u64(0x5eed);
-    let scaled = render::geometry::Transform::from_object(&render::scene::ObjectTransform {
+    let scaled = render::scene::ObjectTransform {
         translate: DVec3::new(1e3, -2e3, 5e2),
         rotate_deg: DVec3::new(10.0, 20.0, 30.0),
         scale: DVec3::new(3.0, 0.5, 1.5),
-    })
+    }
+    .world_from_object()
     .unwrap();
     let surfaces: Vec<(&str, Box<dyn Surface>, f64)> = vec![
         (

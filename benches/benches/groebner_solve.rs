@@ -15,8 +15,8 @@ use groebner::{
     solve, solve_ray_patch, sylvester_resultant_v,
 };
 use render::Camera;
-use render::scene::{CameraSpec, LookAtCamera};
-use render::surface::parse_bpt;
+use render::scene::{CameraSpec, LookAtCamera, parse_bpt};
+use render::surface::BezierPatch;
 
 /// Per piece: power-basis points about the centre of its box, the box, the centre (as the
 /// tracer builds them, `bezier_mesh.rs`).
@@ -26,7 +26,8 @@ fn pieces(k: usize) -> Vec<(Vec<[f64; 3]>, [DVec3; 2], DVec3)> {
     let patches = parse_bpt(&text).expect("teapot.bpt parses");
     let mut out = Vec::new();
     let step = 1.0 / k as f64;
-    for patch in &patches {
+    for net in &patches {
+        let patch = BezierPatch::new(net);
         for a in 0..k {
             for b in 0..k {
                 let u = [a as f64 * step, ((a + 1) as f64 * step).min(1.0)];

@@ -15,8 +15,7 @@ use anyhow::Context;
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use poly::{IsolationMethod, RefineMethod};
-use render::surface::PatchMethod;
-use render::{Gamma, PngOptions, RenderOptions, RootMethods, StatsReport};
+use render::{Gamma, PatchMethod, PngOptions, RenderOptions, RootMethods, StatsReport};
 
 /// Delay before the progress bar appears: renders shorter than this show nothing.
 const PROGRESS_DELAY: Duration = Duration::from_secs(1);

@@ -6,6 +6,32 @@
 //! ([`Poly3::restrict_into`]), and ask [`poly`] for its smallest root in range. Shading is
 //! Stam's illumination model, eq. 2.6–2.16 ([`whitted`]).
 //!
+//! # Layers
+//!
+//! Each module uses only the ones above it (checked by `.ci/module_graph.py`):
+//!
+//! ```text
+//! trivariate, methods        F(x, y, z) and its restriction to a ray; how roots are solved
+//!     │                      (RootMethods, PatchMethod and its groebner::Method mapping)
+//! geometry                   rays, boxes, transforms, polygon normals, error bounds
+//!     │
+//! scene                      plain data (the model: control nets, PatchMethod, transforms)
+//!     │                      and the scene language (lexer → syntax → build; expr, print)
+//! stats, workspace           per-thread counters (per SurfaceKind) and scratch buffers
+//!     │
+//! surface                    the Surface trait and every shape (implicit path, Bézier mesh)
+//!     │
+//! (aggregate)                the scene's acceleration structure (to come)
+//!     │
+//! prepared                   the scene turned into primitives, solvers chosen once
+//!     │
+//! whitted, material, camera  the integrator: Stam's illumination model, textures, rays
+//!     │
+//! film, output               the pixel loop and its Film; PNG and PFM files
+//!     │
+//! options, pipeline          RenderOptions and render_scene: prepare, trace, write
+//! ```
+//!
 //! # Examples
 //! ```
 //! use glam::DVec3;
@@ -29,17 +55,18 @@
 //! ```
 
 mod camera;
+mod film;
 pub mod geometry;
-mod job;
 mod material;
+mod methods;
 mod options;
 mod output;
-mod poly3;
+mod pipeline;
 mod prepared;
-mod renderer;
 pub mod scene;
 mod stats;
 pub mod surface;
+mod trivariate;
 pub mod whitted;
 mod workspace;
 
@@ -47,15 +74,16 @@ mod workspace;
 pub use glam;
 
 pub use crate::camera::Camera;
-pub use crate::job::{RenderError, RenderReport, render_scene};
+pub use crate::film::{Film, RenderOutput, RenderSettings, render};
 pub use crate::material::{surface_color, texture_color};
+pub use crate::methods::{PatchMethod, RootMethods};
 pub use crate::options::RenderOptions;
 pub use crate::output::{
     Gamma, OutputError, PngOptions, read_pfm, write_atomically, write_pfm, write_png,
 };
-pub use crate::poly3::{Eval3, Poly3, RestrictScratch, Term3};
+pub use crate::pipeline::{RenderError, RenderReport, render_scene};
 pub use crate::prepared::{PreparedScene, Primitive};
-pub use crate::renderer::{Film, RenderOutput, RenderSettings, render};
 pub use crate::scene::Scene;
-pub use crate::stats::{KindStats, PhaseTimes, StatsReport, TraceStats};
-pub use crate::workspace::{RootMethods, Workspace};
+pub use crate::stats::{HIST_BINS, KindStats, PatchStats, PhaseTimes, StatsReport, TraceStats};
+pub use crate::trivariate::{Eval3, Poly3, RestrictScratch, Term3};
+pub use crate::workspace::Workspace;

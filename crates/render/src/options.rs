@@ -2,10 +2,9 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::methods::{PatchMethod, RootMethods};
 use crate::output::PngOptions;
 use crate::scene::Scene;
-use crate::surface::PatchMethod;
-use crate::workspace::RootMethods;
 
 /// Options that override or complete the scene's own settings. The command line is parsed into
 /// a raw argument struct and then into this; library users fill it directly.

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use image::ImageEncoder;
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 
-use crate::renderer::Film;
+use crate::film::Film;
 
 /// The transfer function applied to clamped linear values before quantisation (seed
 /// `002_…` §3.2.2: `a' = a^(1/γ)` corrects for the display's `a^γ`).

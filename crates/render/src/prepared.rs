@@ -2,14 +2,14 @@
 //! composed, polynomials precomputed) — what the integrator reads.
 
 use crate::geometry::{Bounds3, Transform};
+use crate::methods::{PatchMethod, RootMethods};
 use crate::scene::{
     BoundingVolume, Light, Material, Scene, SceneInvalid, ShapeKind, Texture, World,
 };
 use crate::surface::{
-    AaBox, Algebraic, Implicit, ImplicitFn, Plane, Polygon, Sphere, Superquadric, Surface, Torus,
-    Transformed,
+    AaBox, Algebraic, BezierMesh, Implicit, ImplicitFn, Plane, Polygon, Sphere, Superquadric,
+    Surface, Torus, Transformed,
 };
-use crate::workspace::RootMethods;
 
 /// A surface with its material: Surface + Material = Object (STYLE.md §6).
 #[derive(Debug)]
@@ -31,24 +31,46 @@ pub struct PreparedScene {
     pub world: World,
     /// Textures referenced by materials.
     pub textures: Vec<Texture>,
-    /// The root finder of the implicit surfaces (default: certified Bernstein).
-    pub roots: RootMethods,
 }
 
 impl PreparedScene {
-    /// Validates `scene` and builds its surfaces.
+    /// Validates `scene` and builds its surfaces with the default solvers (certified Bernstein
+    /// isolation with Newton–bisection; each Bézier object's own `Method`).
     pub fn new(scene: &Scene) -> Result<Self, SceneInvalid> {
+        Self::with_methods(scene, RootMethods::default(), None)
+    }
+
+    /// Validates `scene` and builds its surfaces: implicit surfaces find roots with `roots`,
+    /// Bézier objects eliminate with `patch_method` when given (`render --patch-method`), else
+    /// with their own `Method`. This is where the solver choices reach the surfaces, once per
+    /// render (`crate::methods`).
+    pub fn with_methods(
+        scene: &Scene,
+        roots: RootMethods,
+        patch_method: Option<PatchMethod>,
+    ) -> Result<Self, SceneInvalid> {
         scene.validate()?;
+        let methods = Methods {
+            roots,
+            patch_method,
+        };
         let mut primitives = Vec::with_capacity(scene.objects.len());
         for (index, object) in scene.objects.iter().enumerate() {
             let bad = |key, reason| SceneInvalid::Object {
                 index,
                 error: crate::scene::InvalidModel::new(key, reason),
             };
-            let world_from_object = Transform::from_object(&object.transform)
+            let world_from_object = object
+                .transform
+                .world_from_object()
                 .ok_or_else(|| bad("Transform", "is singular"))?;
-            let surface = build_surface(&object.shape, &object.bounding, &world_from_object)
-                .ok_or_else(|| bad("Type", "has degenerate geometry"))?;
+            let surface = build_surface(
+                &object.shape,
+                &object.bounding,
+                &world_from_object,
+                &methods,
+            )
+            .ok_or_else(|| bad("Type", "has degenerate geometry"))?;
             primitives.push(Primitive {
                 surface,
                 material: object.material.clone(),
@@ -59,9 +81,14 @@ impl PreparedScene {
             lights: scene.lights.clone(),
             world: scene.world.clone(),
             textures: scene.textures.clone(),
-            roots: RootMethods::default(),
         })
     }
+}
+
+/// The solver choices of one render, as [`PreparedScene::with_methods`] received them.
+struct Methods {
+    roots: RootMethods,
+    patch_method: Option<PatchMethod>,
 }
 
 /// Places `s` with `m`, skipping the wrapper for the identity.
@@ -74,14 +101,15 @@ fn place<S: Surface + 'static>(s: S, m: &Transform) -> Box<dyn Surface> {
 }
 
 /// An implicit surface clipped by the scene's `Bounding volume` (in the shape's coordinates).
-fn implicit<F: ImplicitFn>(f: F, bounding: &BoundingVolume) -> Implicit<F> {
-    match *bounding {
+fn implicit<F: ImplicitFn>(f: F, bounding: &BoundingVolume, roots: RootMethods) -> Implicit<F> {
+    let clipped = match *bounding {
         BoundingVolume::None => Implicit::new(f, None),
         BoundingVolume::Box { min, max } => Implicit::new(f, Some(Bounds3::new(min, max))),
         BoundingVolume::Sphere { center, radius } => {
             Implicit::new(f, None).with_clip_sphere(center, radius)
         }
-    }
+    };
+    clipped.with_root_methods(roots)
 }
 
 /// Builds the world-space surface of one shape. `bounding` is in the shape's coordinates;
@@ -90,18 +118,26 @@ fn build_surface(
     shape: &ShapeKind,
     bounding: &BoundingVolume,
     world_from_object: &Transform,
+    methods: &Methods,
 ) -> Option<Box<dyn Surface>> {
+    let roots = methods.roots;
     Some(match shape {
         ShapeKind::Sphere { center, radius } => place(
-            implicit(Sphere::new(*center, *radius), bounding),
+            implicit(Sphere::new(*center, *radius), bounding, roots),
             world_from_object,
         ),
         ShapeKind::Plane { origin, normal } => place(
-            implicit(Plane::new(*origin, *normal), bounding),
+            implicit(Plane::new(*origin, *normal), bounding, roots),
             world_from_object,
         ),
-        ShapeKind::Polygon { vertices } => place(Polygon::new(vertices)?, world_from_object),
-        ShapeKind::Triangle { vertices } => place(Polygon::new(vertices)?, world_from_object),
+        ShapeKind::Polygon { vertices } => place(
+            Polygon::new(vertices)?.with_root_methods(roots),
+            world_from_object,
+        ),
+        ShapeKind::Triangle { vertices } => place(
+            Polygon::new(vertices)?.with_root_methods(roots),
+            world_from_object,
+        ),
         ShapeKind::Box { min, max } => place(AaBox::new(*min, *max), world_from_object),
         ShapeKind::Superquadric {
             center,
@@ -110,7 +146,10 @@ fn build_surface(
         } => {
             let frame = Transform::new(glam::DAffine3::from_translation(*center))?;
             let m = world_from_object.compose(&frame)?;
-            place(Superquadric::new(*size, *power), &m)
+            place(
+                Superquadric::new(*size, *power).with_root_methods(roots),
+                &m,
+            )
         }
         ShapeKind::Torus {
             center,
@@ -142,14 +181,14 @@ fn build_surface(
                 },
             };
             let m = world_from_object.compose(&frame)?;
-            place(implicit(Torus::new(*major, *minor), &local), &m)
+            place(implicit(Torus::new(*major, *minor), &local, roots), &m)
         }
         ShapeKind::Algebraic { poly } => place(
-            implicit(Algebraic::new(poly.clone()), bounding),
+            implicit(Algebraic::new(poly.clone()), bounding, roots),
             world_from_object,
         ),
         ShapeKind::BezierPatches { patches, method } => place(
-            crate::surface::BezierMesh::new(patches.clone(), *method)?,
+            BezierMesh::new(patches, methods.patch_method.unwrap_or(*method))?,
             world_from_object,
         ),
     })

@@ -9,10 +9,10 @@
 use std::path::Path;
 
 use groebner::SolveWorkspace;
-use render::Camera;
 use render::glam::DVec3;
-use render::scene::{CameraSpec, LookAtCamera};
-use render::surface::{BezierMesh, PatchMethod, PatchStats, parse_bpt};
+use render::scene::{CameraSpec, LookAtCamera, parse_bpt};
+use render::surface::BezierMesh;
+use render::{Camera, PatchMethod, PatchStats};
 
 /// The teapot mesh (`scenes/teapot.bpt`, 16×16 pieces per patch) and the camera of
 /// `scenes/teapot.scene` at `size`².
@@ -20,7 +20,7 @@ fn teapot(method: PatchMethod, size: u32) -> (BezierMesh, Camera) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/teapot.bpt");
     let text = std::fs::read_to_string(path).expect("scenes/teapot.bpt is readable");
     let patches = parse_bpt(&text).expect("teapot.bpt parses");
-    let mesh = BezierMesh::new(patches, method).expect("32 patches");
+    let mesh = BezierMesh::new(&patches, method).expect("32 patches");
     let spec = CameraSpec::LookAt(LookAtCamera {
         eye: DVec3::new(5.5, -8.0, 6.0),
         look_at: DVec3::new(0.45, 0.0, 1.35),

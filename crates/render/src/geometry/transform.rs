@@ -3,7 +3,6 @@
 use glam::{DAffine3, DMat3, DVec3};
 
 use super::{Bounds3, Ray, gamma};
-use crate::scene::ObjectTransform;
 
 /// An affine map with its inverse and the matrix that maps normals (the inverse transpose of
 /// the linear part). Name values `world_from_object` so compositions read right.
@@ -34,15 +33,6 @@ impl Transform {
             inv,
             normal_m: inv.matrix3.transpose(),
         })
-    }
-
-    /// `world_from_object` for a scene object: `T(translate)·Rz·Ry·Rx·S(scale)`.
-    pub fn from_object(t: &ObjectTransform) -> Option<Self> {
-        let r = t.rotate_deg * (std::f64::consts::PI / 180.0);
-        let rot =
-            DMat3::from_rotation_z(r.z) * DMat3::from_rotation_y(r.y) * DMat3::from_rotation_x(r.x);
-        let m = DAffine3::from_mat3_translation(rot * DMat3::from_diagonal(t.scale), t.translate);
-        Transform::new(m)
     }
 
     /// A rigid map taking the origin to `origin` and the `z` axis to the unit vector along
@@ -116,36 +106,5 @@ impl Transform {
     /// The box holding the image of `b`.
     pub fn apply_bounds(&self, b: &Bounds3) -> Bounds3 {
         b.transformed(self)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn object_transform_order_is_scale_rotate_translate() {
-        let t = ObjectTransform {
-            translate: DVec3::new(10.0, 0.0, 0.0),
-            rotate_deg: DVec3::new(0.0, 0.0, 90.0),
-            scale: DVec3::new(2.0, 1.0, 1.0),
-        };
-        let m = Transform::from_object(&t).unwrap();
-        let p = m.apply_point(DVec3::X);
-        // scale → (2,0,0), rotate 90° about z → (0,2,0), translate → (10,2,0)
-        assert!((p - DVec3::new(10.0, 2.0, 0.0)).length() < 1e-12, "{p}");
-        let back = m.inverse().apply_point(p);
-        assert!((back - DVec3::X).length() < 1e-12, "inverse: {back}");
-        // Normals of the plane x = 1 (object) stay perpendicular to the image plane.
-        let n = m.apply_normal(DVec3::X);
-        let tangent = m.apply_vector(DVec3::Y);
-        assert!(
-            n.dot(tangent).abs() < 1e-12,
-            "normal ⟂ tangent after the map"
-        );
-        assert!(
-            Transform::new(DAffine3::from_scale(DVec3::new(1.0, 0.0, 1.0))).is_none(),
-            "singular"
-        );
     }
 }

@@ -11,6 +11,8 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 
+use super::bpt::{parse_bpt, parse_control_points};
+use super::control_net::ControlNet;
 use super::error::{ErrorKind, SceneError, Span};
 use super::expr::{Constants, eval_const, expand};
 use super::model::{
@@ -21,8 +23,8 @@ use super::model::{
 use super::syntax::{
     Block, Command, Entry, Key, SceneAst, ShapeType, TextureType, Value, parse_syntax,
 };
-use crate::poly3::Poly3;
-use crate::surface::{BezierPatch, PatchMethod, parse_bpt, parse_control_points};
+use crate::methods::PatchMethod;
+use crate::trivariate::Poly3;
 
 /// The largest image side `#viewport Size` and texture sizes accept, in pixels.
 ///
@@ -1080,7 +1082,7 @@ fn read_patches(
             ));
         }
         Eval::Points(points) => {
-            let patch = BezierPatch::new(3, 3, points.clone())
+            let patch = ControlNet::new(3, 3, points.clone())
                 .map_err(|e| invalid(span, Key::ControlPoints, e.to_string()))?;
             return Ok(ShapeKind::BezierPatches {
                 patches: vec![patch],

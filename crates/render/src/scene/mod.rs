@@ -3,16 +3,20 @@
 //!
 //! The model is plain data with public fields; build one in Rust or load a `.scene` file.
 
+mod bpt;
 mod build;
+mod control_net;
 mod error;
 mod expr;
+#[cfg(test)]
+mod expr_tests;
 mod lexer;
 mod model;
 mod print;
 mod syntax;
 
-#[allow(unused_imports, reason = "used by the polygon surface")]
-pub(crate) use model::polygon_normal;
+pub use bpt::{BptError, MAX_BPT_PATCHES, parse_bpt, parse_control_points};
+pub use control_net::{ControlNet, MAX_PATCH_DEGREE, PatchError};
 pub use model::{
     BoundingVolume, CameraSpec, CheckerTexture, Illumination, ImageTexture, InvalidModel, Light,
     LookAtCamera, Material, Object, ObjectTransform, Rgb, Scene, SceneInvalid, ShapeKind,
@@ -23,9 +27,9 @@ pub use model::{
 // `paper-notes/scene-language.md`.
 pub use build::{MAX_IMAGE_SIDE, MAX_RECURSION_DEPTH, build, load, parse};
 pub use error::{ErrorKind, SceneError, Span};
-pub use expr::{Axis, BinOp, Expr, ExprKind, MAX_EQUATION_DEGREE};
+pub use expr::{Axis, BinOp, Expr, ExprKind, MAX_EQUATION_DEGREE, Spanned};
 pub use print::print;
 pub use syntax::{
-    Block, Command, Entry, Key, MAX_EXPR_DEPTH, MAX_NESTING, SceneAst, ShapeType, Spanned,
-    TextureType, Value, parse_syntax,
+    Block, Command, Entry, Key, MAX_EXPR_DEPTH, MAX_NESTING, SceneAst, ShapeType, TextureType,
+    Value, parse_syntax,
 };

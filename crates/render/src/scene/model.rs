@@ -11,7 +11,7 @@
 //! # Examples
 //! ```
 //! use render::scene::{Object, Scene, ShapeKind};
-//! use glam::DVec3;
+//! use glam::{DAffine3, DMat3, DVec3};
 //! let mut scene = Scene::default();
 //! scene.objects.push(Object::new(ShapeKind::Sphere { center: DVec3::ZERO, radius: 1.0 }));
 //! assert!(scene.validate().is_ok());
@@ -20,9 +20,12 @@
 
 use std::path::PathBuf;
 
-use glam::DVec3;
+use glam::{DAffine3, DMat3, DVec3};
 
-use crate::poly3::Poly3;
+use super::control_net::ControlNet;
+use crate::geometry::{Transform, polygon_normal};
+use crate::methods::PatchMethod;
+use crate::trivariate::Poly3;
 
 /// A linear RGB colour: `x` is red, `y` green, `z` blue; nominally each in `[0, 1]`.
 pub type Rgb = DVec3;
@@ -260,10 +263,10 @@ pub enum ShapeKind {
     },
     /// Bézier patches (`BEZIER_PATCH`: one; `BEZIER_MESH`: a `.bpt` file), traced exactly.
     BezierPatches {
-        /// The patches, at least one.
-        patches: Vec<crate::surface::BezierPatch>,
+        /// The control nets of the patches, at least one.
+        patches: Vec<ControlNet>,
         /// How `v` is eliminated for each ray.
-        method: crate::surface::PatchMethod,
+        method: PatchMethod,
     },
 }
 
@@ -399,17 +402,6 @@ fn nonzero(v: DVec3, key: &'static str) -> Result<(), InvalidModel> {
     }
 }
 
-/// The unit normal of a planar polygon (Newell's method), `None` when the area is zero.
-pub(crate) fn polygon_normal(vertices: &[DVec3]) -> Option<DVec3> {
-    let mut n = DVec3::ZERO;
-    for (i, a) in vertices.iter().enumerate() {
-        let b = vertices[(i + 1) % vertices.len()];
-        n += a.cross(b);
-    }
-    let len = n.length();
-    (len > 0.0 && len.is_finite()).then(|| n / len)
-}
-
 /// Which terms of Stam's illumination model an object gets (eq. 2.6; Annexe B `Intensity`).
 ///
 /// The variants are ordered as Stam's numeric codes: each level adds terms to the previous
@@ -526,6 +518,18 @@ impl ObjectTransform {
     /// True when the transform is the identity (the tracer then skips the wrapper).
     pub fn is_identity(&self) -> bool {
         *self == ObjectTransform::default()
+    }
+
+    /// The map `world_from_object`: `T(translate)·Rz·Ry·Rx·S(scale)`; `None` when it is
+    /// singular or not finite.
+    pub fn world_from_object(&self) -> Option<Transform> {
+        let r = self.rotate_deg * (std::f64::consts::PI / 180.0);
+        let rot =
+            DMat3::from_rotation_z(r.z) * DMat3::from_rotation_y(r.y) * DMat3::from_rotation_x(r.x);
+        Transform::new(DAffine3::from_mat3_translation(
+            rot * DMat3::from_diagonal(self.scale),
+            self.translate,
+        ))
     }
 }
 
@@ -734,6 +738,32 @@ pub enum SceneInvalid {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn object_transform_order_is_scale_rotate_translate() {
+        let t = ObjectTransform {
+            translate: DVec3::new(10.0, 0.0, 0.0),
+            rotate_deg: DVec3::new(0.0, 0.0, 90.0),
+            scale: DVec3::new(2.0, 1.0, 1.0),
+        };
+        let m = t.world_from_object().unwrap();
+        let p = m.apply_point(DVec3::X);
+        // scale → (2,0,0), rotate 90° about z → (0,2,0), translate → (10,2,0)
+        assert!((p - DVec3::new(10.0, 2.0, 0.0)).length() < 1e-12, "{p}");
+        let back = m.inverse().apply_point(p);
+        assert!((back - DVec3::X).length() < 1e-12, "inverse: {back}");
+        // Normals of the plane x = 1 (object) stay perpendicular to the image plane.
+        let n = m.apply_normal(DVec3::X);
+        let tangent = m.apply_vector(DVec3::Y);
+        assert!(
+            n.dot(tangent).abs() < 1e-12,
+            "normal ⟂ tangent after the map"
+        );
+        assert!(
+            Transform::new(DAffine3::from_scale(DVec3::new(1.0, 0.0, 1.0))).is_none(),
+            "singular"
+        );
+    }
 
     #[test]
     fn validation_rejects_degenerate_shapes() {

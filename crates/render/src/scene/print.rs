@@ -4,9 +4,7 @@
 //! that keep the tree, so parsing the printed text gives back an equal tree (STYLE.md §7,
 //! "scene files round-trip"). Comments and layout are not kept.
 
-use std::fmt::Write as _;
-
-use super::expr::{BinOp, Expr, ExprKind};
+use super::expr::{Expr, print_expr};
 use super::syntax::{Block, Entry, SceneAst, Value, illumination_name};
 
 /// Renders a syntax tree as scene-language text that [`crate::scene::parse_syntax`] reads
@@ -125,69 +123,6 @@ fn print_value(out: &mut String, value: &Value) {
     }
 }
 
-/// Binding strength of an expression's top operator; atoms bind tightest.
-fn prec(e: &Expr) -> u8 {
-    match &e.kind {
-        ExprKind::Binary { op, .. } => match op.value {
-            BinOp::Add | BinOp::Sub => 1,
-            BinOp::Mul | BinOp::Div => 2,
-            BinOp::Pow => 4,
-        },
-        ExprKind::Neg(_) => 3,
-        ExprKind::Number(_) | ExprKind::Var(_) | ExprKind::Name(_) | ExprKind::Sqrt(_) => 5,
-    }
-}
-
-/// Writes `e`, in parentheses when `wrap`.
-fn print_sub(out: &mut String, e: &Expr, wrap: bool) {
-    if wrap {
-        out.push('(');
-        print_expr(out, e);
-        out.push(')');
-    } else {
-        print_expr(out, e);
-    }
-}
-
-/// Writes an expression with the parentheses the parser needs to rebuild the same tree:
-/// left-associative `+ - * /` wrap a right operand of equal strength, right-associative `^`
-/// wraps a left one; a unary minus is accepted wherever an operand starts, except as the
-/// base of `^` (`-x^2` is `-(x^2)`).
-pub(crate) fn print_expr(out: &mut String, e: &Expr) {
-    match &e.kind {
-        ExprKind::Number(v) => {
-            // `{}` is the shortest text that reads back as the same `f64`.
-            let _ = write!(out, "{v}");
-        }
-        ExprKind::Var(axis) => out.push_str(axis.name()),
-        ExprKind::Name(n) => out.push_str(n),
-        ExprKind::Sqrt(inner) => {
-            out.push_str("sqrt(");
-            print_expr(out, inner);
-            out.push(')');
-        }
-        ExprKind::Neg(inner) => {
-            out.push('-');
-            print_sub(out, inner, prec(inner) < 4);
-        }
-        ExprKind::Binary { op, lhs, rhs } => {
-            let p = prec(e);
-            match op.value {
-                BinOp::Pow => {
-                    print_sub(out, lhs, prec(lhs) <= 4);
-                    out.push('^');
-                    print_sub(out, rhs, prec(rhs) < 3);
-                }
-                _ => {
-                    print_sub(out, lhs, prec(lhs) < p);
-                    let _ = write!(out, " {} ", op.value.symbol());
-                    print_sub(out, rhs, prec(rhs) <= p && prec(rhs) != 3);
-                }
-            }
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use std::path::Path;
@@ -197,10 +132,10 @@ mod tests {
 
     use super::*;
     use crate::scene::error::Span;
-    use crate::scene::expr::Axis;
+    use crate::scene::expr::{Axis, BinOp, ExprKind, Spanned};
     use crate::scene::model::Illumination;
     use crate::scene::syntax::{
-        Command, Key, KeyUse, ShapeType, Spanned, TextureType, ValueKind, key_use, parse_syntax,
+        Command, Key, KeyUse, ShapeType, TextureType, ValueKind, key_use, parse_syntax,
     };
 
     fn span() -> Span {

@@ -34,7 +34,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use super::error::{ErrorKind, SceneError, Span};
-use super::expr::{Axis, BinOp, Expr, ExprKind};
+use super::expr::{Axis, BinOp, Expr, ExprKind, Spanned};
 use super::lexer::{Lexer, Tok, Token};
 use super::model::Illumination;
 
@@ -46,22 +46,6 @@ pub const MAX_NESTING: u32 = 128;
 /// Bounds the recursion of the build step, the printer and `Drop`; 1000 leaves room for a
 /// fully expanded degree-12 polynomial (455 terms) written out by hand.
 pub const MAX_EXPR_DEPTH: u32 = 1000;
-
-/// A value and where it was written. Equality compares the values only, so two trees that
-/// say the same thing are equal wherever their text sits (as `toml::Spanned` does).
-#[derive(Clone, Debug)]
-pub struct Spanned<T> {
-    /// The value.
-    pub value: T,
-    /// Where its first token is.
-    pub span: Span,
-}
-
-impl<T: PartialEq> PartialEq for Spanned<T> {
-    fn eq(&self, other: &Self) -> bool {
-        self.value == other.value
-    }
-}
 
 /// A parsed scene file: its blocks in file order.
 #[derive(Clone, Debug)]

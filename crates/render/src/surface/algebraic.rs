@@ -14,7 +14,7 @@ use glam::DVec3;
 use super::SurfaceKind;
 use super::implicit::ImplicitFn;
 use crate::geometry::Bounds3;
-use crate::poly3::{Poly3, RestrictScratch};
+use crate::trivariate::{Poly3, RestrictScratch};
 
 /// A general algebraic surface. Its bounds come from the scene's `Bounding volume`; without
 /// one it is unbounded and the search range is cut by a root bound of each restriction.

@@ -34,16 +34,16 @@ use std::ops::Range;
 use std::time::Instant;
 
 use glam::{DVec2, DVec3};
-use groebner::{
-    Method, SolveOptions, SolveWorkspace, Verdict, ray_patch_system, solve, solve_ray_patch,
-};
+use groebner::{SolveOptions, SolveWorkspace, Verdict, ray_patch_system, solve, solve_ray_patch};
 use poly::{Rat, Scalar};
 
 use super::bezier_patch::BezierPatch;
 use super::patch_bvh::PatchBvh;
-use super::patch_stats::PatchStats;
 use super::{Hit, Surface, SurfaceGeometry, SurfaceKind};
 use crate::geometry::{Bounds3, Ray, gamma};
+use crate::methods::PatchMethod;
+use crate::scene::ControlNet;
+use crate::stats::PatchStats;
 use crate::workspace::Workspace;
 
 /// Accepted 3-D residual of a hit, relative to the size of the numbers involved:
@@ -95,67 +95,6 @@ const COLLAPSED_EDGE_REL: f64 = 1e-12;
 
 /// Gauss–Newton iterations to recover `(u, v)` of a hit point in shading.
 const PROJECT_STEPS: usize = 24;
-
-/// How `v` is eliminated for every ray (`Method =` in the scene, `--patch-method` on the CLI).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum PatchMethod {
-    /// Stam's two-polynomial Gröbner reduction (article §4.2, `groebner::Method::Stam`).
-    #[default]
-    Groebner,
-    /// Kajiya's resultant `Res_v(F1, F2)`, as the determinant of the `3 × 3` Bézout matrix
-    /// (`groebner::Method::BezoutResultant`): for a bicubic `F1`, `F2` (both of degree 3 in
-    /// `v`) it equals the `6 × 6` Sylvester determinant exactly and costs 12 polynomial
-    /// products instead of 192 (measured on the 210² teapot: 14 µs per ray/piece test instead
-    /// of 38.5 µs, the same image bit for bit).
-    Resultant,
-    /// [`PatchMethod::Groebner`] over exact rationals: reference renders (slow: seconds per
-    /// ray on a bicubic).
-    GroebnerExact,
-    /// [`PatchMethod::Resultant`] over exact rationals: reference renders (slow: about 0.3 s
-    /// per bicubic piece, release build).
-    ResultantExact,
-}
-
-impl PatchMethod {
-    /// The scene-file spelling.
-    pub fn name(self) -> &'static str {
-        match self {
-            PatchMethod::Groebner => "GROEBNER",
-            PatchMethod::Resultant => "RESULTANT",
-            PatchMethod::GroebnerExact => "GROEBNER_EXACT",
-            PatchMethod::ResultantExact => "RESULTANT_EXACT",
-        }
-    }
-
-    /// Whether the algebra runs over exact rationals.
-    pub fn is_exact(self) -> bool {
-        matches!(
-            self,
-            PatchMethod::GroebnerExact | PatchMethod::ResultantExact
-        )
-    }
-
-    /// Parses a scene-file or CLI spelling (case-insensitive).
-    pub fn parse(s: &str) -> Option<Self> {
-        [
-            PatchMethod::Groebner,
-            PatchMethod::Resultant,
-            PatchMethod::GroebnerExact,
-            PatchMethod::ResultantExact,
-        ]
-        .into_iter()
-        .find(|m| {
-            m.name().eq_ignore_ascii_case(s) || m.name().replace('_', "-").eq_ignore_ascii_case(s)
-        })
-    }
-
-    fn solver_method(self) -> Method {
-        match self {
-            PatchMethod::Groebner | PatchMethod::GroebnerExact => Method::Stam,
-            PatchMethod::Resultant | PatchMethod::ResultantExact => Method::BezoutResultant,
-        }
-    }
-}
 
 /// One piece of a patch, ready for the per-ray algebra.
 #[derive(Clone, Debug)]
@@ -430,22 +369,19 @@ pub struct BezierMesh {
 }
 
 impl BezierMesh {
-    /// The mesh of `patches` traced with `method`, each patch cut into
-    /// [`DEFAULT_SUBDIVISION`]² pieces. `None` for an empty list.
-    pub fn new(patches: Vec<BezierPatch>, method: PatchMethod) -> Option<Self> {
-        Self::with_subdivision(patches, method, DEFAULT_SUBDIVISION)
+    /// The mesh of the patches with control nets `nets` traced with `method`, each patch cut
+    /// into [`DEFAULT_SUBDIVISION`]² pieces. `None` for an empty list.
+    pub fn new(nets: &[ControlNet], method: PatchMethod) -> Option<Self> {
+        Self::with_subdivision(nets, method, DEFAULT_SUBDIVISION)
     }
 
     /// As [`BezierMesh::new`] with `k × k` pieces per patch (`k` clamped to
     /// `1..=MAX_SUBDIVISION`).
-    pub fn with_subdivision(
-        patches: Vec<BezierPatch>,
-        method: PatchMethod,
-        k: usize,
-    ) -> Option<Self> {
-        if patches.is_empty() {
+    pub fn with_subdivision(nets: &[ControlNet], method: PatchMethod, k: usize) -> Option<Self> {
+        if nets.is_empty() {
             return None;
         }
+        let patches: Vec<BezierPatch> = nets.iter().map(BezierPatch::new).collect();
         let k = k.clamp(1, MAX_SUBDIVISION);
         let step = 1.0 / k as f64;
         let mut pieces = Vec::with_capacity(patches.len() * k * k);

@@ -9,11 +9,7 @@
 use glam::DVec3;
 
 use crate::geometry::Bounds3;
-
-/// Largest degree accepted in `u` or in `v`. The eliminant of a degree `n × m` patch has
-/// degree up to `2nm` (Kajiya's Bézout bound, 18 for a bicubic); 6 allows bisextic patches
-/// (eliminant degree 72), beyond which `f64` elimination is hopeless anyway.
-pub const MAX_PATCH_DEGREE: usize = 6;
+use crate::scene::ControlNet;
 
 /// A power-basis coefficient no larger than `POWER_ZERO_REL · max_ij |P_ij|` (the largest
 /// control-point coordinate) is set to exactly zero.
@@ -39,38 +35,6 @@ pub struct BezierPatch {
     power: Vec<DVec3>,
 }
 
-/// Why a control net is not a patch.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[non_exhaustive]
-pub enum PatchError {
-    /// A degree is 0 or above [`MAX_PATCH_DEGREE`].
-    #[error("patch degree {n}x{m} is not between 1 and {MAX_PATCH_DEGREE} in each direction")]
-    Degree {
-        /// Degree in `u`.
-        n: usize,
-        /// Degree in `v`.
-        m: usize,
-    },
-    /// The number of points is not `(n + 1)(m + 1)`.
-    #[error("a {n}x{m} patch needs {expected} control points, got {got}")]
-    PointCount {
-        /// Degree in `u`.
-        n: usize,
-        /// Degree in `v`.
-        m: usize,
-        /// `(n + 1)(m + 1)`.
-        expected: usize,
-        /// What was given.
-        got: usize,
-    },
-    /// A coordinate is NaN or infinite.
-    #[error("control point {index} is not finite")]
-    NonFinite {
-        /// Index of the point, row by row.
-        index: usize,
-    },
-}
-
 /// `C(n, k)` for the small degrees used here.
 fn binomial(n: usize, k: usize) -> f64 {
     (0..k).fold(1.0, |c, i| c * (n - i) as f64 / (i + 1) as f64)
@@ -92,42 +56,26 @@ fn bernstein_to_power(n: usize) -> Vec<f64> {
 }
 
 impl BezierPatch {
-    /// The patch of degree `n` in `u` and `m` in `v` with control points `points`, row by row
-    /// (`P_ij` at `i * (m + 1) + j`). Converts to the power basis once (Stam `CalcCoef`,
-    /// article §4.1).
-    ///
-    /// # Errors
-    /// [`PatchError`] for a degree outside `1..=MAX_PATCH_DEGREE`, a wrong number of points,
-    /// or a non-finite coordinate.
+    /// The patch of the control net `net`, converted to the power basis once (Stam
+    /// `CalcCoef`, article §4.1).
     ///
     /// # Examples
     /// ```
     /// use glam::DVec3;
+    /// use render::scene::ControlNet;
     /// use render::surface::BezierPatch;
     /// // The bilinear saddle z = (2u − 1)(2v − 1) over [−1, 1]².
     /// let pts = [(-1.0, -1.0, 1.0), (-1.0, 1.0, -1.0), (1.0, -1.0, -1.0), (1.0, 1.0, 1.0)]
     ///     .map(|(x, y, z)| DVec3::new(x, y, z));
-    /// let patch = BezierPatch::new(1, 1, pts.to_vec())?;
+    /// let patch = BezierPatch::new(&ControlNet::new(1, 1, pts.to_vec())?);
     /// assert_eq!(patch.eval(0.5, 0.5), DVec3::ZERO);
     /// assert_eq!(patch.eval(1.0, 0.0), DVec3::new(1.0, -1.0, -1.0));
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
-    pub fn new(n: usize, m: usize, points: Vec<DVec3>) -> Result<Self, PatchError> {
-        if !(1..=MAX_PATCH_DEGREE).contains(&n) || !(1..=MAX_PATCH_DEGREE).contains(&m) {
-            return Err(PatchError::Degree { n, m });
-        }
-        let expected = (n + 1) * (m + 1);
-        if points.len() != expected {
-            return Err(PatchError::PointCount {
-                n,
-                m,
-                expected,
-                got: points.len(),
-            });
-        }
-        if let Some(index) = points.iter().position(|p| !p.is_finite()) {
-            return Err(PatchError::NonFinite { index });
-        }
+    pub fn new(net: &ControlNet) -> Self {
+        let [n, m] = net.degree();
+        let points = net.points().to_vec();
+        let expected = points.len();
         let (wu, wv) = (bernstein_to_power(n), bernstein_to_power(m));
         // P^power_kl = Σ_i Σ_j wu[k][i] wv[l][j] P_ij (CalcCoef, generalised to n × m).
         // Round-off residue is set to exactly zero, so that a degree-elevated net has the
@@ -149,11 +97,11 @@ impl BezierPatch {
                 power[l * (n + 1) + k] = DVec3::select(keep, c, DVec3::ZERO);
             }
         }
-        Ok(BezierPatch {
+        BezierPatch {
             degree: [n, m],
             control: points,
             power,
-        })
+        }
     }
 
     /// `[n, m]`, the degrees in `u` and `v`.
@@ -219,7 +167,8 @@ impl BezierPatch {
                 out[i * (m + 1) + j] = p;
             }
         }
-        BezierPatch::new(n, m, out).unwrap_or_else(|_| self.clone())
+        // Non-finite only if de Casteljau overflowed; the whole patch then stands in.
+        ControlNet::new(n, m, out).map_or_else(|_| self.clone(), |net| BezierPatch::new(&net))
     }
 }
 
@@ -267,7 +216,7 @@ mod tests {
                 DVec3::new(i, j, (i * 1.3 + j * 0.7).sin() + 0.1 * i * j)
             })
             .collect();
-        BezierPatch::new(3, 3, pts).unwrap()
+        BezierPatch::new(&ControlNet::new(3, 3, pts).unwrap())
     }
 
     /// `S(u, v)` straight from the Bernstein definition.
@@ -326,32 +275,6 @@ mod tests {
         assert!(
             p.bounds().contains(s.bounds().min) && p.bounds().contains(s.bounds().max),
             "a piece's hull lies in the whole hull"
-        );
-    }
-
-    #[test]
-    fn bad_nets_are_errors() {
-        assert_eq!(
-            BezierPatch::new(3, 3, vec![DVec3::ZERO; 15]),
-            Err(PatchError::PointCount {
-                n: 3,
-                m: 3,
-                expected: 16,
-                got: 15
-            }),
-            "point count"
-        );
-        assert_eq!(
-            BezierPatch::new(0, 3, vec![DVec3::ZERO; 4]),
-            Err(PatchError::Degree { n: 0, m: 3 }),
-            "degree"
-        );
-        let mut pts = vec![DVec3::ZERO; 4];
-        pts[2].y = f64::NAN;
-        assert_eq!(
-            BezierPatch::new(1, 1, pts),
-            Err(PatchError::NonFinite { index: 2 }),
-            "NaN"
         );
     }
 }

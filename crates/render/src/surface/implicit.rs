@@ -8,9 +8,11 @@ use std::ops::Range;
 use glam::{DVec2, DVec3};
 use poly::{Poly, RootOptions};
 
+use crate::methods::RootMethods;
+
 use super::{Hit, Surface, SurfaceGeometry, SurfaceKind};
 use crate::geometry::{Bounds3, Ray, gamma};
-use crate::poly3::{Eval3, Poly3, RestrictScratch};
+use crate::trivariate::{Eval3, Poly3, RestrictScratch};
 use crate::workspace::Workspace;
 
 /// Root tolerance relative to the extent of the search: a nearest-hit query asks `poly` for
@@ -74,6 +76,8 @@ pub struct Implicit<F> {
     /// A user bounding sphere `(centre, radius)` (`Bounding volume = SPHERE …`): only the
     /// part of the surface inside it is traced.
     clip_sphere: Option<(DVec3, f64)>,
+    /// How the ray polynomial's smallest root is found (set once per render).
+    roots: RootMethods,
 }
 
 impl<F: ImplicitFn> Implicit<F> {
@@ -92,7 +96,14 @@ impl<F: ImplicitFn> Implicit<F> {
             diagonal,
             bounds,
             clip_sphere: None,
+            roots: RootMethods::default(),
         }
+    }
+
+    /// Finds roots with `roots` instead of the default methods.
+    pub fn with_root_methods(mut self, roots: RootMethods) -> Self {
+        self.roots = roots;
+        self
     }
 
     /// Clips the surface to the sphere of centre `c` and radius `r` (in the shape's
@@ -125,11 +136,16 @@ impl<F: ImplicitFn> Implicit<F> {
 }
 
 /// The smallest root of the polynomial held in `ws.coeffs` in `(lo, hi]`, found by `poly`'s
-/// certified query; `None` also for a polynomial that vanishes identically along the ray (the
+/// query with `opts` (tolerance and methods); `None` also for a polynomial that vanishes identically along the ray (the
 /// ray lies in the surface). An infinite `hi` (unbounded surfaces) is first replaced by
 /// Cauchy's bound `1 + max|cᵢ/cₙ|`, widened by `4ε` for its rounding: every root lies below it,
 /// and the solver then skips its own (costlier, `powf`-based) bound.
-pub(crate) fn smallest_root_in(ws: &mut Workspace, lo: f64, hi: f64, x_tol: f64) -> Option<f64> {
+pub(crate) fn smallest_root_in(
+    ws: &mut Workspace,
+    lo: f64,
+    hi: f64,
+    opts: &RootOptions,
+) -> Option<f64> {
     let p = Poly::new(std::mem::take(&mut ws.coeffs));
     let hi = if hi.is_finite() || p.degree() == 1 {
         // (A linear polynomial's root is decided against an infinite end directly.)
@@ -140,10 +156,7 @@ pub(crate) fn smallest_root_in(ws: &mut Workspace, lo: f64, hi: f64, x_tol: f64)
     } else {
         p.cauchy_bound().map(|b| b * (1.0 + 4.0 * f64::EPSILON))
     };
-    let mut opts = RootOptions::new(x_tol);
-    opts.isolation = ws.roots.isolation;
-    opts.refine = ws.roots.refine;
-    let root = hi.and_then(|hi| p.smallest_root_with(lo, hi, &opts, &mut ws.stats.roots));
+    let root = hi.and_then(|hi| p.smallest_root_with(lo, hi, opts, &mut ws.stats.roots));
     ws.coeffs = p.into_coeffs();
     root
 }
@@ -257,7 +270,7 @@ impl<F: ImplicitFn> Implicit<F> {
         } else {
             self.x_tol(ray.dir, o, hi)
         };
-        let s = smallest_root_in(ws, lo, hi, x_tol)?;
+        let s = smallest_root_in(ws, lo, hi, &self.roots.options(x_tol))?;
         Some((t0 + s, o + ray.dir * s))
     }
 }

@@ -7,7 +7,7 @@
 //! shadow queries and may stop early.
 //!
 //! Every implicit surface (sphere, plane, torus, algebraic surface, and the superquadric's
-//! octant pieces) goes through the same path in [`implicit`]: restrict `F` to the ray, then ask
+//! octant pieces) goes through the same path in `implicit.rs` ([`Implicit`]): restrict `F` to the ray, then ask
 //! `poly` for the smallest root in range (`paper-notes/implicit-surfaces.md`). No shape owns a
 //! solver.
 
@@ -16,16 +16,16 @@ use std::ops::Range;
 use glam::{DVec2, DVec3};
 
 use crate::geometry::{Bounds3, Ray};
+/// The kinds of surface (defined with the statistics that count per kind).
+pub use crate::stats::SurfaceKind;
 use crate::workspace::Workspace;
 
 mod aabox;
 mod algebraic;
 mod bezier_mesh;
 mod bezier_patch;
-mod bpt;
 mod implicit;
 mod patch_bvh;
-mod patch_stats;
 mod plane;
 mod polygon;
 mod sphere;
@@ -37,12 +37,9 @@ pub use aabox::AaBox;
 pub use algebraic::Algebraic;
 pub use bezier_mesh::{
     BezierMesh, DEFAULT_SUBDIVISION, HIT_P_ERR_REL, HIT_RESIDUAL_REL, MAX_SUBDIVISION, PatchHit,
-    PatchMethod,
 };
-pub use bezier_patch::{BezierPatch, MAX_PATCH_DEGREE, POWER_ZERO_REL, PatchError};
-pub use bpt::{BptError, MAX_BPT_PATCHES, parse_bpt, parse_control_points};
+pub use bezier_patch::{BezierPatch, POWER_ZERO_REL};
 pub use implicit::{ENTRY_MARGIN_REL, Implicit, ImplicitFn, ROOT_X_TOL_REL, SINGULAR_P_ERR_REL};
-pub use patch_stats::{HIST_BINS, PatchStats};
 pub use plane::Plane;
 pub use polygon::Polygon;
 pub use sphere::Sphere;
@@ -78,66 +75,6 @@ pub struct SurfaceGeometry {
     /// Surface parameters where the shape defines them (plane, polygon, triangle and box
     /// faces: coordinates in the face's own basis), used by textures.
     pub uv: Option<DVec2>,
-}
-
-/// The kinds of surface, for statistics.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum SurfaceKind {
-    /// [`Sphere`].
-    Sphere,
-    /// [`Plane`].
-    Plane,
-    /// [`Polygon`] with more than three vertices.
-    Polygon,
-    /// [`Polygon`] with three vertices.
-    Triangle,
-    /// [`AaBox`].
-    Box,
-    /// [`Superquadric`].
-    Superquadric,
-    /// [`Torus`].
-    Torus,
-    /// [`Algebraic`].
-    Algebraic,
-    /// [`BezierMesh`] (one or more Bézier patches).
-    BezierPatch,
-}
-
-impl SurfaceKind {
-    /// Number of kinds.
-    pub const COUNT: usize = 9;
-    /// Every kind, in [`SurfaceKind::index`] order.
-    pub const ALL: [SurfaceKind; SurfaceKind::COUNT] = [
-        SurfaceKind::Sphere,
-        SurfaceKind::Plane,
-        SurfaceKind::Polygon,
-        SurfaceKind::Triangle,
-        SurfaceKind::Box,
-        SurfaceKind::Superquadric,
-        SurfaceKind::Torus,
-        SurfaceKind::Algebraic,
-        SurfaceKind::BezierPatch,
-    ];
-
-    /// Position in [`SurfaceKind::ALL`] and in per-kind statistics arrays.
-    pub fn index(self) -> usize {
-        self as usize
-    }
-
-    /// The scene-file type name.
-    pub fn name(self) -> &'static str {
-        match self {
-            SurfaceKind::Sphere => "SPHERE",
-            SurfaceKind::Plane => "PLANE",
-            SurfaceKind::Polygon => "POLYGON",
-            SurfaceKind::Triangle => "TRIANGLE",
-            SurfaceKind::Box => "BOX",
-            SurfaceKind::Superquadric => "SUPERQUADRIC",
-            SurfaceKind::Torus => "TORUS",
-            SurfaceKind::Algebraic => "ALGEBRAIC",
-            SurfaceKind::BezierPatch => "BEZIER_PATCH",
-        }
-    }
 }
 
 /// A shape in its own coordinates.

@@ -17,8 +17,8 @@ use glam::{DVec2, DVec3};
 
 use super::implicit::Implicit;
 use super::{Hit, Plane, Surface, SurfaceGeometry, SurfaceKind};
-use crate::geometry::{Bounds3, Ray, gamma};
-use crate::scene::polygon_normal;
+use crate::geometry::{Bounds3, Ray, gamma, polygon_normal};
+use crate::methods::RootMethods;
 use crate::workspace::Workspace;
 
 /// A planar polygon with at least three vertices.
@@ -67,6 +67,12 @@ impl Polygon {
             drop_axis,
             bounds,
         })
+    }
+
+    /// Finds the plane's root with `roots` instead of the default methods.
+    pub fn with_root_methods(mut self, roots: RootMethods) -> Self {
+        self.plane = self.plane.with_root_methods(roots);
+        self
     }
 
     fn project(&self, v: DVec3) -> DVec2 {

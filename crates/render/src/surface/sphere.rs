@@ -13,7 +13,7 @@ use glam::DVec3;
 use super::SurfaceKind;
 use super::implicit::ImplicitFn;
 use crate::geometry::Bounds3;
-use crate::poly3::{Poly3, RestrictScratch};
+use crate::trivariate::{Poly3, RestrictScratch};
 
 /// A sphere, traced through the shared implicit path.
 #[derive(Clone, Debug)]

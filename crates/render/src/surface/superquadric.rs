@@ -23,6 +23,7 @@ use glam::DVec3;
 use super::implicit::{ROOT_X_TOL_REL, SINGULAR_P_ERR_REL, clip, search_start, smallest_root_in};
 use super::{Hit, Surface, SurfaceGeometry, SurfaceKind};
 use crate::geometry::{Bounds3, Ray, gamma};
+use crate::methods::RootMethods;
 use crate::workspace::Workspace;
 
 /// A superquadric centred at the origin with half-extents `size` and integer power.
@@ -33,6 +34,8 @@ pub struct Superquadric {
     bounds: Bounds3,
     /// Binomial coefficients `C(p, m)`, `m = 0..=p`.
     binom: Vec<f64>,
+    /// How each piece's smallest root is found (set once per render).
+    roots: RootMethods,
 }
 
 impl Superquadric {
@@ -47,7 +50,14 @@ impl Superquadric {
             power,
             bounds: Bounds3::new(-size, size),
             binom,
+            roots: RootMethods::default(),
         }
+    }
+
+    /// Finds roots with `roots` instead of the default methods.
+    pub fn with_root_methods(mut self, roots: RootMethods) -> Self {
+        self.roots = roots;
+        self
     }
 
     /// Writes the restriction of `Σ (σᵢ (oᵢ + t dᵢ)/sᵢ)^p − 1` into `ws.coeffs`.
@@ -116,7 +126,7 @@ impl Superquadric {
             } else {
                 0.0
             };
-            if let Some(s) = smallest_root_in(ws, lo, hi, x_tol) {
+            if let Some(s) = smallest_root_in(ws, lo, hi, &self.roots.options(x_tol)) {
                 let tag = octant_tag(signs);
                 return Some((start + s, o + ray.dir * s, tag));
             }

@@ -18,7 +18,7 @@ use super::SurfaceKind;
 use super::implicit::ImplicitFn;
 
 use crate::geometry::Bounds3;
-use crate::poly3::{Eval3, Poly3, RestrictScratch};
+use crate::trivariate::{Eval3, Poly3, RestrictScratch};
 
 /// A torus centred at the origin with axis `z`, traced through the shared implicit path as
 /// its quartic.

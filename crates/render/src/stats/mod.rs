@@ -6,8 +6,11 @@ use std::time::Duration;
 
 use poly::{IsolationMethod, RefineMethod, RootStats, STATS_DEGREES};
 
-use crate::surface::{PatchStats, SurfaceKind};
-use crate::workspace::RootMethods;
+use crate::methods::RootMethods;
+
+mod patch;
+
+pub use patch::{HIST_BINS, PatchStats};
 
 /// Counters filled in while tracing. Each worker thread owns one (inside its
 /// [`Workspace`](crate::Workspace)); the totals are summed with [`TraceStats::merge`].
@@ -115,6 +118,66 @@ impl TraceStats {
 impl AddAssign<&TraceStats> for TraceStats {
     fn add_assign(&mut self, rhs: &TraceStats) {
         self.merge(rhs);
+    }
+}
+
+/// The kinds of surface, for statistics.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SurfaceKind {
+    /// [`Sphere`](crate::surface::Sphere).
+    Sphere,
+    /// [`Plane`](crate::surface::Plane).
+    Plane,
+    /// [`Polygon`](crate::surface::Polygon) with more than three vertices.
+    Polygon,
+    /// [`Polygon`](crate::surface::Polygon) with three vertices.
+    Triangle,
+    /// [`AaBox`](crate::surface::AaBox).
+    Box,
+    /// [`Superquadric`](crate::surface::Superquadric).
+    Superquadric,
+    /// [`Torus`](crate::surface::Torus).
+    Torus,
+    /// [`Algebraic`](crate::surface::Algebraic).
+    Algebraic,
+    /// [`BezierMesh`](crate::surface::BezierMesh) (one or more Bézier patches).
+    BezierPatch,
+}
+
+impl SurfaceKind {
+    /// Number of kinds.
+    pub const COUNT: usize = 9;
+    /// Every kind, in [`SurfaceKind::index`] order.
+    pub const ALL: [SurfaceKind; SurfaceKind::COUNT] = [
+        SurfaceKind::Sphere,
+        SurfaceKind::Plane,
+        SurfaceKind::Polygon,
+        SurfaceKind::Triangle,
+        SurfaceKind::Box,
+        SurfaceKind::Superquadric,
+        SurfaceKind::Torus,
+        SurfaceKind::Algebraic,
+        SurfaceKind::BezierPatch,
+    ];
+
+    /// Position in [`SurfaceKind::ALL`] and in per-kind statistics arrays.
+    pub fn index(self) -> usize {
+        self as usize
+    }
+
+    /// The scene-file type name.
+    pub fn name(self) -> &'static str {
+        match self {
+            SurfaceKind::Sphere => "SPHERE",
+            SurfaceKind::Plane => "PLANE",
+            SurfaceKind::Polygon => "POLYGON",
+            SurfaceKind::Triangle => "TRIANGLE",
+            SurfaceKind::Box => "BOX",
+            SurfaceKind::Superquadric => "SUPERQUADRIC",
+            SurfaceKind::Torus => "TORUS",
+            SurfaceKind::Algebraic => "ALGEBRAIC",
+            SurfaceKind::BezierPatch => "BEZIER_PATCH",
+        }
     }
 }
 

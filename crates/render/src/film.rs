@@ -123,13 +123,10 @@ pub fn render(
             .par_chunks_mut(band)
             .zip(depth.par_chunks_mut(band))
             .enumerate()
-            .fold(
-                || Workspace::with_roots(scene.roots),
-                |mut ws, (cy, (bp, bd))| {
-                    render_band(&mut ws, cy, bp, bd);
-                    ws
-                },
-            )
+            .fold(Workspace::new, |mut ws, (cy, (bp, bd))| {
+                render_band(&mut ws, cy, bp, bd);
+                ws
+            })
             .map(|ws| ws.stats)
             .reduce(TraceStats::default, |mut a, b| {
                 a.merge(&b);
@@ -139,13 +136,10 @@ pub fn render(
         pixels
             .par_chunks_mut(band)
             .enumerate()
-            .fold(
-                || Workspace::with_roots(scene.roots),
-                |mut ws, (cy, bp)| {
-                    render_band(&mut ws, cy, bp, &mut []);
-                    ws
-                },
-            )
+            .fold(Workspace::new, |mut ws, (cy, bp)| {
+                render_band(&mut ws, cy, bp, &mut []);
+                ws
+            })
             .map(|ws| ws.stats)
             .reduce(TraceStats::default, |mut a, b| {
                 a.merge(&b);

@@ -32,7 +32,7 @@ pub struct PatchStats {
     /// `(u, v)` candidates rejected by the solver's residual test on `F1`, `F2`.
     pub rejected_by_solver: u64,
     /// Verified `(u, v)` roots rejected by the 3-D residual test
-    /// ([`HIT_RESIDUAL_REL`](super::HIT_RESIDUAL_REL)).
+    /// ([`HIT_RESIDUAL_REL`](crate::surface::HIT_RESIDUAL_REL)).
     pub rejected_by_residual: u64,
     /// Verified roots whose `t` lay outside the query range (behind the origin, or beyond
     /// the nearest hit so far).

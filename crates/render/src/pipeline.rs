@@ -3,10 +3,10 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use crate::film::{RenderOutput, RenderSettings, render};
 use crate::options::RenderOptions;
 use crate::output::{OutputError, write_pfm, write_png};
 use crate::prepared::PreparedScene;
-use crate::renderer::{RenderOutput, RenderSettings, render};
 use crate::scene::{Scene, SceneInvalid};
 use crate::stats::PhaseTimes;
 
@@ -67,19 +67,7 @@ pub fn render_scene(
         return Err(RenderError::Option("--samples must be at least 1".into()));
     }
     let setup_start = Instant::now();
-    // `--patch-method` overrides every Bézier object's `Method`.
-    let overridden = opts.patch_method.map(|m| {
-        let mut s = scene.clone();
-        for o in &mut s.objects {
-            if let crate::scene::ShapeKind::BezierPatches { method, .. } = &mut o.shape {
-                *method = m;
-            }
-        }
-        s
-    });
-    let scene = overridden.as_ref().unwrap_or(scene);
-    let mut prepared = PreparedScene::new(scene)?;
-    prepared.roots = opts.roots;
+    let prepared = PreparedScene::with_methods(scene, opts.roots, opts.patch_method)?;
     let settings = RenderSettings {
         size,
         resolution: scene.viewport.resolution,

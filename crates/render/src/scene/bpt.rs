@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use super::bezier_patch::{BezierPatch, MAX_PATCH_DEGREE, PatchError};
+use super::control_net::{ControlNet, MAX_PATCH_DEGREE, PatchError};
 
 /// Most patches accepted in one `.bpt` file (a guard against a corrupt count).
 pub const MAX_BPT_PATCHES: usize = 1 << 20;
@@ -73,12 +73,12 @@ fn patch_error(line: usize, e: PatchError) -> BptError {
 /// # Examples
 /// ```
 /// let text = "1\n1 1\n0 0 0\n0 1 0\n1 0 0\n1 1 1\n";
-/// let patches = render::surface::parse_bpt(text)?;
+/// let patches = render::scene::parse_bpt(text)?;
 /// assert_eq!(patches.len(), 1);
 /// assert_eq!(patches[0].degree(), [1, 1]);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn parse_bpt(text: &str) -> Result<Vec<BezierPatch>, BptError> {
+pub fn parse_bpt(text: &str) -> Result<Vec<ControlNet>, BptError> {
     let mut it = lines(text);
     let (line, l) = it
         .next()
@@ -122,7 +122,7 @@ pub fn parse_bpt(text: &str) -> Result<Vec<BezierPatch>, BptError> {
             points.push(DVec3::new(x, y, z));
             last_line = line;
         }
-        patches.push(BezierPatch::new(n, m, points).map_err(|e| patch_error(last_line, e))?);
+        patches.push(ControlNet::new(n, m, points).map_err(|e| patch_error(last_line, e))?);
     }
     if let Some((line, l)) = it.next() {
         return Err(err(
@@ -138,7 +138,7 @@ pub fn parse_bpt(text: &str) -> Result<Vec<BezierPatch>, BptError> {
 ///
 /// # Errors
 /// [`BptError`] with the line of the first problem.
-pub fn parse_control_points(text: &str) -> Result<BezierPatch, BptError> {
+pub fn parse_control_points(text: &str) -> Result<ControlNet, BptError> {
     let mut points = Vec::with_capacity(16);
     let mut last = 1;
     for (line, l) in lines(text) {
@@ -161,7 +161,7 @@ pub fn parse_control_points(text: &str) -> Result<BezierPatch, BptError> {
             ),
         ));
     }
-    BezierPatch::new(3, 3, points).map_err(|e| patch_error(last, e))
+    ControlNet::new(3, 3, points).map_err(|e| patch_error(last, e))
 }
 
 #[cfg(test)]
@@ -194,7 +194,7 @@ mod tests {
                     1 0 0\n1 1 1\n1 2 1\n1 3 0\n2 0 0\n2 1 1\n2 2 1\n2 3 0\n\
                     3 0 0\n3 1 0\n3 2 0\n3 3 0\n";
         let p = parse_control_points(text).unwrap();
-        assert_eq!(p.control_points()[1], DVec3::new(0.0, 1.0, 0.0), "P[0][1]");
-        assert_eq!(p.control_points()[5], DVec3::new(1.0, 1.0, 1.0), "P[1][1]");
+        assert_eq!(p.points()[1], DVec3::new(0.0, 1.0, 0.0), "P[0][1]");
+        assert_eq!(p.points()[5], DVec3::new(1.0, 1.0, 1.0), "P[1][1]");
     }
 }
