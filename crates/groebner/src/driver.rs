@@ -276,6 +276,31 @@ pub(crate) fn finish_resultant<T: SolveScalar>(
     }
 }
 
+/// Inputs whose largest coefficient lies outside `[2^-EXTREME_SCALE_EXP, 2^EXTREME_SCALE_EXP]`
+/// are first scaled by a power of two (exact in `f64`, same roots) to a largest coefficient in
+/// `[1, 2)`: a bicubic resultant multiplies six coefficients and Stam's loop divides by
+/// leading ones, so inputs near `1e±300` would overflow to infinity or underflow to zero long
+/// before their roots were found. `2^64` keeps every product of six coefficients (`2^384`)
+/// far inside the range of `f64`, and leaves the systems of real scenes (coefficients of
+/// patches and rays in scene units) unscaled, so their arithmetic is unchanged.
+pub(crate) const EXTREME_SCALE_EXP: i32 = 64;
+
+/// The power of two [`EXTREME_SCALE_EXP`] asks for on these coefficients: `1.0` (no scaling)
+/// when the largest `|c|` is inside the range or zero, else `2^k` with `2^k·max|c| ∈ [1, 2)`.
+pub(crate) fn extreme_scale(coeffs: &[f64]) -> f64 {
+    let max = coeffs.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+    if max == 0.0 || !max.is_finite() {
+        return 1.0;
+    }
+    let e = max.log2().floor() as i32;
+    if e.abs() <= EXTREME_SCALE_EXP {
+        return 1.0;
+    }
+    // 2^-e in two factors, so that neither over- nor underflows for |e| up to 1074.
+    let half = -e / 2;
+    (f64::from(half)).exp2() * (f64::from(-e - half)).exp2()
+}
+
 /// Drops trailing exact zeros (as [`Poly::new`]).
 pub(crate) fn trim_zeros<T: poly::Scalar>(c: &mut Vec<T>) {
     while c.last().is_some_and(|x| x.is_zero()) {

@@ -56,6 +56,14 @@ pub enum Error {
         /// The limit that was hit.
         limit: usize,
     },
+    /// An `f64` computation produced a non-finite coefficient (an intermediate result beyond
+    /// the range of `f64`, from finite input of very wide range). The solver then uses the
+    /// resultant instead.
+    #[error("{algorithm}: an intermediate coefficient is not finite")]
+    Overflow {
+        /// `"r2"`, `"stam"` or `"buchberger"`.
+        algorithm: &'static str,
+    },
     /// The resultant's matrix is too large for the division-free determinant.
     #[error("resultant matrix of size {size} exceeds the limit {limit}")]
     MatrixTooLarge {

@@ -67,14 +67,16 @@ mod testutil;
 mod tracked;
 
 pub use crate::basis::Basis;
-pub use crate::buchberger::{BUCHBERGER_MAX_BASIS, buchberger, is_groebner_basis, reduce_basis};
+pub use crate::buchberger::{
+    BUCHBERGER_MAX_BASIS, BUCHBERGER_MAX_REMAINDERS, buchberger, is_groebner_basis, reduce_basis,
+};
 pub use crate::error::Error;
 pub use crate::options::{
     DEFAULT_F_TOL_REL, DEFAULT_X_TOL, Method, Root, Solution, SolveOptions, SolveStats, Verdict,
 };
 pub use crate::per_ray::SolveWorkspace;
 pub use crate::ray_patch::{RayPatchSystem, ray_patch_system};
-pub use crate::reduction::{normal_form, r2, reduction_step, s_polynomial};
+pub use crate::reduction::{R2_MAX_STEPS, normal_form, r2, reduction_step, s_polynomial};
 pub use crate::resultant::{
     MAX_MATRIX_SIZE, bezout_matrix_v, bezout_resultant_v, poly_matrix_det, sylvester_matrix_v,
     sylvester_resultant_v,

@@ -24,8 +24,8 @@
 use crate::bezout_bicubic::{BICUBIC_DEGREE, bezout_bicubic_det};
 use crate::bicubic::Bicubic;
 use crate::driver::{
-    Buffers, Certifiable, Elimination, certify, deg_v, eliminate_degenerate, find_roots,
-    finish_resultant, originals, widened,
+    Buffers, Certifiable, Elimination, certify, deg_v, eliminate_degenerate, extreme_scale,
+    find_roots, finish_resultant, originals, widened,
 };
 use crate::error::Error;
 use crate::options::{Method, SolveOptions, SolveStats, Verdict, check_options};
@@ -89,6 +89,13 @@ pub(crate) fn solve_bicubic(
             return Err(Error::NonFinite { what });
         }
     }
+    let scaled = |f: &Bicubic| {
+        let s = extreme_scale(&f.c);
+        Bicubic {
+            c: f.c.map(|c| c * s),
+        }
+    };
+    let (f1, f2) = (&scaled(f1), &scaled(f2));
     let mut stats = SolveStats::default();
     let f = [f1, f2];
     let elimination =

@@ -8,6 +8,7 @@
 
 use poly::{BiPoly, Scalar};
 
+use crate::error::Error;
 use crate::tracked::Tracked;
 
 /// One step of the reduction relation `p →F q` (article §3 def. 4): the highest term of `p`
@@ -105,6 +106,11 @@ pub fn s_polynomial<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> BiPoly<T> {
 /// # Exactness
 /// Exact over `Rat` (monic results). Over `f64` the relative zero rule applies at every step.
 ///
+/// # Errors
+/// [`Error::NonFinite`] for a NaN or infinite input coefficient; [`Error::Overflow`] when an
+/// `f64` step leaves the range of `f64` (inputs of very wide range); [`Error::LimitExceeded`]
+/// after [`R2_MAX_STEPS`] steps.
+///
 /// # Examples
 /// ```
 /// use groebner::r2;
@@ -112,16 +118,29 @@ pub fn s_polynomial<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> BiPoly<T> {
 /// // Article §4.2: p = u²v − v + u, q = uv + u² + 2 end as −v − u³ − u and −u⁴ + 2.
 /// let p = BiPoly::from_terms([(1.0, 2, 1), (-1.0, 0, 1), (1.0, 1, 0)]);
 /// let q = BiPoly::from_terms([(1.0, 1, 1), (1.0, 2, 0), (2.0, 0, 0)]);
-/// let (p, q) = r2(&p, &q);
+/// let (p, q) = r2(&p, &q)?;
 /// assert_eq!(p, BiPoly::from_terms([(1.0, 0, 1), (1.0, 3, 0), (1.0, 1, 0)])); // monic
 /// assert_eq!(q, BiPoly::from_terms([(1.0, 4, 0), (-2.0, 0, 0)]));
+/// # Ok::<(), groebner::Error>(())
 /// ```
-pub fn r2<T: Scalar>(p: &BiPoly<T>, q: &BiPoly<T>) -> (BiPoly<T>, BiPoly<T>) {
-    let (mut p, mut q) = r2_tracked(Tracked::new(p.clone()), Tracked::new(q.clone()));
+pub fn r2<T: Scalar>(p: &BiPoly<T>, q: &BiPoly<T>) -> Result<(BiPoly<T>, BiPoly<T>), Error> {
+    let (p, q) = (Tracked::new(p.clone()), Tracked::new(q.clone()));
+    p.check_finite("r2")
+        .map_err(|_| Error::NonFinite { what: "p" })?;
+    q.check_finite("r2")
+        .map_err(|_| Error::NonFinite { what: "q" })?;
+    let (mut p, mut q) = r2_tracked(p, q)?;
     p.make_monic();
     q.make_monic();
-    (p.poly, q.poly)
+    Ok((p.poly, q.poly))
 }
+
+/// Most reduction steps one [`r2`] may take before [`Error::LimitExceeded`]. Each step lowers
+/// one of the two leading monomials, so the loop ends in exact arithmetic; for a ray/bicubic
+/// system (`Deg_v ≤ 3`, eliminant degree ≤ 18) it is Euclid's algorithm on a few remainders,
+/// a few hundred steps at most. The bound stops an `f64` run whose round-off residues keep
+/// long remainder sequences alive, at a cost far below a second.
+pub const R2_MAX_STEPS: usize = 1 << 16;
 
 pub(crate) fn track_all<T: Scalar>(basis: &[BiPoly<T>]) -> Vec<Tracked<T>> {
     basis
@@ -140,30 +159,38 @@ pub(crate) fn s_poly_tracked<T: Scalar>(f: &Tracked<T>, g: &Tracked<T>) -> Track
 pub(crate) fn r2_tracked<T: Scalar>(
     mut p: Tracked<T>,
     mut q: Tracked<T>,
-) -> (Tracked<T>, Tracked<T>) {
+) -> Result<(Tracked<T>, Tracked<T>), Error> {
     p.make_monic();
     q.make_monic();
+    p.check_finite("r2")?;
+    q.check_finite("r2")?;
     if p.lm() < q.lm() {
         std::mem::swap(&mut p, &mut q);
     }
     // Invariant: LM(p) ≥ LM(q) (None, the zero polynomial, is below everything).
-    loop {
+    for _ in 0..R2_MAX_STEPS {
         let (Some(lp), Some(lq)) = (p.lm(), q.lm()) else {
-            return (p, q);
+            return Ok((p, q));
         };
         if !lq.divides(lp) {
-            return (p, q);
+            return Ok((p, q));
         }
         // p := p − λ·q with λ = (lc(p)/lc(q))·LM(p)/LM(q).
         p.cancel_with(lp, &q);
         if p.is_zero() {
-            return (q, p);
+            return Ok((q, p));
         }
         p.make_monic();
+        p.check_finite("r2")?;
         if p.lm() < q.lm() {
             std::mem::swap(&mut p, &mut q);
         }
     }
+    Err(Error::LimitExceeded {
+        algorithm: "r2",
+        what: "steps",
+        limit: R2_MAX_STEPS,
+    })
 }
 
 #[cfg(test)]
@@ -275,7 +302,7 @@ mod tests {
         // Article §4.2: ends as p = −v − u³ − u, q = −u⁴ + 2 (here monic).
         let p = qb(&[(1, 2, 1), (-1, 0, 1), (1, 1, 0)]);
         let qq = qb(&[(1, 1, 1), (1, 2, 0), (2, 0, 0)]);
-        let (a, b) = r2(&p, &qq);
+        let (a, b) = r2(&p, &qq).unwrap();
         assert_eq!(
             a,
             qb(&[(-1, 0, 1), (-1, 3, 0), (-1, 1, 0)]).make_monic(),
@@ -284,7 +311,7 @@ mod tests {
         assert_eq!(b, qb(&[(-1, 4, 0), (2, 0, 0)]).make_monic(), "q = −u⁴ + 2");
         assert!(a.deg_v() > b.deg_v(), "Deg_v(q) < Deg_v(p)");
         // Symmetric in its arguments.
-        assert_eq!(r2(&qq, &p), (a, b), "R2(q, p) = R2(p, q)");
+        assert_eq!(r2(&qq, &p).unwrap(), (a, b), "R2(q, p) = R2(p, q)");
     }
 
     #[test]
@@ -292,7 +319,7 @@ mod tests {
         // gcd((u−1)(u−2)(u+3), (u−1)(u+3)(u+4)) = (u−1)(u+3) = u² + 2u − 3.
         let a = qb(&[(6, 0, 0), (-7, 1, 0), (0, 2, 0), (1, 3, 0)]);
         let b = qb(&[(-12, 0, 0), (5, 1, 0), (6, 2, 0), (1, 3, 0)]);
-        let (g, z) = r2(&a, &b);
+        let (g, z) = r2(&a, &b).unwrap();
         assert!(z.is_zero(), "the second polynomial reduces to zero: {z}");
         assert_eq!(g, qb(&[(-3, 0, 0), (2, 1, 0), (1, 2, 0)]), "monic gcd");
     }
@@ -307,7 +334,7 @@ mod tests {
             let p = BiPoly::from_terms([(s, 2, 1), (-s, 0, 1), (s, 1, 0)]);
             let qq = BiPoly::from_terms([(1.0, 1, 1), (1.0, 2, 0), (2.0, 0, 0)]);
             let qq = (&qq + &p.scale(&(0.37 / s))).scale(&(0.3 * s));
-            let (a, b) = r2(&p, &qq);
+            let (a, b) = r2(&p, &qq).unwrap();
             assert_eq!(
                 a.leading_monomial(),
                 Some(Monomial::new(0, 1)),

@@ -13,8 +13,8 @@ use crate::basis::Basis;
 use crate::bicubic::Bicubic;
 use crate::buchberger::{buchberger_tracked, reduce_tracked_keep};
 use crate::driver::{
-    Buffers, Certifiable, Elimination, certify, eliminate_degenerate, find_roots, finish_resultant,
-    originals, widened,
+    Buffers, Certifiable, Elimination, certify, eliminate_degenerate, extreme_scale, find_roots,
+    finish_resultant, originals, widened,
 };
 use crate::error::Error;
 use crate::options::{Method, Root, Solution, SolveOptions, SolveStats, Verdict, check_options};
@@ -107,6 +107,22 @@ pub fn solve<T: SolveScalar>(
                     stats,
                 })
             });
+        }
+    }
+    if !T::EXACT {
+        // Extreme magnitudes: the same system scaled by powers of two (driver.rs).
+        let factor = |f: &BiPoly<T>| {
+            extreme_scale(
+                &f.coeffs()
+                    .iter()
+                    .map(Scalar::nearest_f64)
+                    .collect::<Vec<_>>(),
+            )
+        };
+        let (s1, s2) = (factor(f1), factor(f2));
+        if s1 != 1.0 || s2 != 1.0 {
+            let by = |f: &BiPoly<T>, s: f64| f.scale(&T::from_f64(s).expect("a power of two"));
+            return solve_general(&by(f1, s1), &by(f2, s2), opts);
         }
     }
     solve_general(f1, f2, opts)
@@ -234,7 +250,7 @@ fn eliminate_groebner_f64<T: SolveScalar>(
     let (um, vm) = (corner(u_max), corner(v_max));
     let (tracked, basis) = match tracked_basis(f[0], f[1], opts.method, |t| t.is_noise(&um, &vm)) {
         Ok(Some(found)) => found,
-        Ok(None) | Err(Error::LimitExceeded { .. } | Error::NonFinite { .. }) => {
+        Ok(None) | Err(Error::LimitExceeded { .. } | Error::Overflow { .. }) => {
             return fallback(f, buf, stats);
         }
         Err(e) => return Err(e),

@@ -46,6 +46,9 @@ pub(crate) enum Dense {
     Full,
     /// The abort test held for a new element (see `NOISE_ABORT_REL`).
     Noise,
+    /// A leading coefficient is not finite (wide-range input overflowed `f64`): NaN breaks
+    /// the descent of the leading monomials, so the run stops.
+    Overflow,
 }
 
 /// A polynomial with its ideal-distance bounds (see the `tracked` module docs), dense.
@@ -211,6 +214,17 @@ impl DensePoly {
 
     pub(crate) fn is_zero(&self) -> bool {
         self.lead.is_none()
+    }
+
+    /// `Err(Dense::Overflow)` when the leading coefficient is not finite: a NaN lead is never
+    /// cancelled, which would stall the descent of `R2`. A non-finite coefficient below the
+    /// lead either becomes a lead later (and stops the run here) or stays in an element whose
+    /// certificate bound is then NaN, which certifies nothing.
+    fn check_finite_lead(&self) -> Result<(), Dense> {
+        match self.lead {
+            Some(m) if !self.at(m).is_finite() => Err(Dense::Overflow),
+            _ => Ok(()),
+        }
     }
 
     /// The leading monomial in the `v`-first order ([`Monomial`]).
@@ -531,6 +545,7 @@ fn r2(
         if sp.is_zero() {
             return Ok((q, p));
         }
+        sp.check_finite_lead()?;
         // In the solver's variant, unlike Stam's `Scale` (and `r2_tracked`), the remainder is
         // not made monic after every step, only at the next `r2`: `cancel_with` divides by
         // the reducer's leading coefficient anyway, the bounds hold for any scaling, and the
@@ -588,6 +603,7 @@ pub(crate) fn stam_dense(
         }
         let s = spare;
         set_s_poly_slots(slots, s, order[i], order[i + 1], corner)?;
+        slots[s].check_finite_lead()?;
         slots[s].make_monic();
         let (gi, s) = r2(slots, s, order[i], corner, variant)?;
         order[i] = gi;

@@ -47,7 +47,9 @@ pub const STAM_MAX_ROUNDS: usize = 256;
 /// O(terms²) coefficient operations. Exact coefficients can grow to hundreds of bits.
 ///
 /// # Errors
-/// [`Error::LimitExceeded`] after [`STAM_MAX_ROUNDS`] rounds.
+/// [`Error::NonFinite`] for a NaN or infinite input coefficient; [`Error::Overflow`] when an
+/// `f64` step leaves the range of `f64`; [`Error::LimitExceeded`] after [`STAM_MAX_ROUNDS`]
+/// rounds or [`R2_MAX_STEPS`](crate::R2_MAX_STEPS) steps of one `R2`.
 ///
 /// # Examples
 /// ```
@@ -63,7 +65,12 @@ pub const STAM_MAX_ROUNDS: usize = 256;
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn stam_basis<T: Scalar>(f1: &BiPoly<T>, f2: &BiPoly<T>) -> Result<Basis<T>, Error> {
-    let g = stam_tracked(Tracked::new(f1.clone()), Tracked::new(f2.clone()))?;
+    let (t1, t2) = (Tracked::new(f1.clone()), Tracked::new(f2.clone()));
+    t1.check_finite("stam")
+        .map_err(|_| Error::NonFinite { what: "F1" })?;
+    t2.check_finite("stam")
+        .map_err(|_| Error::NonFinite { what: "F2" })?;
+    let g = stam_tracked(t1, t2)?;
     Ok(Basis::new(
         g.into_iter()
             .map(|mut t| {
@@ -89,7 +96,7 @@ pub(crate) fn stam_tracked_until<T: Scalar>(
     f2: Tracked<T>,
     abort: impl Fn(&Tracked<T>) -> bool,
 ) -> Result<Option<Vec<Tracked<T>>>, Error> {
-    let (a, b) = r2_tracked(f1, f2);
+    let (a, b) = r2_tracked(f1, f2)?;
     let mut g = vec![a, b];
     let mut i = 0;
     // Invariant: g[i+1] is the newest element and LM(g[i]) > LM(g[i+1]) unless g[i+1] = 0.
@@ -108,10 +115,11 @@ pub(crate) fn stam_tracked_until<T: Scalar>(
         // `Reduce_2(i+2, i)`: when both leading monomials are equal it is the one reduced, so
         // the older element is kept rather than replaced by a longer equivalent.
         let gi = std::mem::replace(&mut g[i], Tracked::zero());
-        let (gi, s) = r2_tracked(s, gi);
+        s.check_finite("stam")?;
+        let (gi, s) = r2_tracked(s, gi)?;
         g[i] = gi;
         let gi1 = std::mem::replace(&mut g[i + 1], Tracked::zero());
-        let (gi1, s) = r2_tracked(s, gi1);
+        let (gi1, s) = r2_tracked(s, gi1)?;
         g[i + 1] = gi1;
         if abort(&s) {
             return Ok(None);

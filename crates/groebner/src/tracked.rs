@@ -44,6 +44,8 @@
 use num_traits::Signed;
 use poly::{BiPoly, Monomial, Scalar, UNIT_ROUNDOFF, gamma};
 
+use crate::error::Error;
+
 /// Slack factor of the zero rule (see the module docs): a coefficient is zero when
 /// `|c| ≤ ZERO_ERR_FACTOR · d`. The bound `d` is first-order; 4 covers the neglected
 /// second-order terms many times over while dropping nothing the bound would certify by more
@@ -173,6 +175,23 @@ impl<T: Scalar> Tracked<T> {
 
     pub(crate) fn is_zero(&self) -> bool {
         self.poly.is_zero()
+    }
+
+    /// `Err(Error::Overflow)` when a coefficient is not finite (`f64` only): NaN and infinity
+    /// break the invariants the loops rely on (a NaN leading term is never cancelled, so `R2`
+    /// would spin forever).
+    pub(crate) fn check_finite(&self, algorithm: &'static str) -> Result<(), Error> {
+        if T::EXACT
+            || self
+                .poly
+                .coeffs()
+                .iter()
+                .all(|c| c.nearest_f64().is_finite())
+        {
+            Ok(())
+        } else {
+            Err(Error::Overflow { algorithm })
+        }
     }
 
     pub(crate) fn lm(&self) -> Option<Monomial> {
@@ -366,25 +385,35 @@ impl<T: Scalar> Tracked<T> {
     /// Top reduction: reduces the leading term while it is a multiple of some `LM(g)`. The
     /// result is zero iff the normal form is, which is all Buchberger's loop needs; the tails
     /// are reduced once at the end ([`reduce_basis`](crate::reduce_basis)).
-    pub(crate) fn reduce_leading(&mut self, basis: &[Tracked<T>]) {
+    pub(crate) fn reduce_leading(&mut self, basis: &[Tracked<T>]) -> Result<(), Error> {
+        // Each step lowers the leading monomial, a descent in a well-order (finite); a
+        // non-finite coefficient is refused before it can stall the descent.
         while let Some(t) = self.lm() {
+            self.check_finite("buchberger")?;
             let Some(g) = basis
                 .iter()
                 .find(|g| g.lm().is_some_and(|lm| lm.divides(t)))
             else {
-                return;
+                return Ok(());
             };
             self.cancel_with(t, g);
         }
+        Ok(())
     }
 
     /// The normal form `NF(self, basis)` (article §3 def. 5): reduces every term, top down.
     /// Terms above a reduced monomial never change again (every term of `x·g` is at most
     /// `x·LM(g)`), so one downward sweep suffices.
+    ///
+    /// The reduced monomial strictly decreases (a descent in a well-order, so finite) and the
+    /// loop also stops at a non-finite coefficient (`f64`), which then stays in the result.
     pub(crate) fn reduce_fully(&mut self, basis: &[Tracked<T>]) {
         let mut below = None;
         while let Some(t) = self.reduce_step(basis, below) {
             below = Some(t);
+            if self.check_finite("normal form").is_err() {
+                return;
+            }
         }
     }
 }

@@ -92,83 +92,252 @@ fn tol_at(f1: &QBiPoly, f2: &QBiPoly, p: &(Rat, Rat)) -> f64 {
     }
 }
 
+/// The property of `planted_roots_are_found` on one system `F_k = a_k·g1 + b_k·g2`: every
+/// planted root is found by exact Stam, exact and `f64` resultants, and the `f64` methods find
+/// the same root set as exact Stam (singular planted roots excepted in `f64`).
+fn check_planted(
+    pts: [(Rat, Rat); 2],
+    a: [QBiPoly; 2],
+    b: [QBiPoly; 2],
+) -> Result<(), TestCaseError> {
+    let [a1, a2] = a;
+    let [b1, b2] = b;
+    let (f1, f2) = planted_system(pts.clone(), [a1, a2], [b1, b2]);
+    let exact = solve(
+        &f1,
+        &f2,
+        &SolveOptions {
+            method: Method::Stam,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    if exact.verdict != Verdict::Finite {
+        return Ok(()); // a common curve is possible, rarely
+    }
+    for p in &pts {
+        let tol = tol_at(&f1, &f2, p);
+        prop_assert!(
+            found(&exact.roots, p, tol),
+            "exact Stam missed {p:?}: {:?}",
+            exact.roots
+        );
+    }
+    let (g1, g2) = (f1.to_f64(), f2.to_f64());
+    let singular = pts.iter().any(|p| singular_at(&f1, &f2, p));
+    for m in [Method::Resultant, Method::BezoutResultant] {
+        let opts = SolveOptions {
+            method: m,
+            ..Default::default()
+        };
+        let ex = solve(&f1, &f2, &opts).unwrap();
+        let fl = solve(&g1, &g2, &opts).unwrap();
+        for p in &pts {
+            let tol = tol_at(&f1, &f2, p);
+            prop_assert!(found(&ex.roots, p, tol), "{m:?} exact missed {p:?}");
+        }
+        prop_assert_eq!(
+            ex.roots.len(),
+            exact.roots.len(),
+            "{:?}: {:?} vs {:?}",
+            m,
+            ex.roots,
+            exact.roots
+        );
+        if singular {
+            continue;
+        }
+        // f64 finds every planted root, and the same root set as exact Stam.
+        for p in &pts {
+            prop_assert!(found(&fl.roots, p, POS_TOL), "{m:?} f64 missed {p:?}");
+        }
+        prop_assert_eq!(
+            fl.roots.len(),
+            exact.roots.len(),
+            "{:?} f64: {:?} vs {:?}",
+            m,
+            fl.roots,
+            exact.roots
+        );
+        for r in &fl.roots {
+            prop_assert!(
+                exact
+                    .roots
+                    .iter()
+                    .any(|e| (e.u - r.u).abs() <= SINGULAR_POS_TOL
+                        && (e.v - r.v).abs() <= SINGULAR_POS_TOL),
+                "{m:?} f64 root {r:?} not among exact {:?}",
+                exact.roots
+            );
+        }
+    }
+    // The f64 Gröbner methods (certified basis, or the resultant when the basis cannot be
+    // certified) find the same root set.
+    if !singular {
+        for m in [Method::Stam, Method::Buchberger] {
+            let fl = solve(
+                &g1,
+                &g2,
+                &SolveOptions {
+                    method: m,
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+            for p in &pts {
+                prop_assert!(
+                    found(&fl.roots, p, POS_TOL),
+                    "{m:?} f64 missed {p:?}: {:?}",
+                    fl
+                );
+            }
+            prop_assert_eq!(
+                fl.roots.len(),
+                exact.roots.len(),
+                "{:?} f64: {:?} vs {:?}",
+                m,
+                fl.roots,
+                exact.roots
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The property of `stam_and_buchberger_agree` on one system.
+fn check_stam_buchberger(
+    pts: [(Rat, Rat); 2],
+    a: [QBiPoly; 2],
+    b: [QBiPoly; 2],
+) -> Result<(), TestCaseError> {
+    let [a1, a2] = a;
+    let [b1, b2] = b;
+    let (f1, f2) = planted_system(pts.clone(), [a1, a2], [b1, b2]);
+    if f1.is_zero() || f2.is_zero() {
+        return Ok(());
+    }
+    let stam = stam_basis(&f1, &f2).unwrap();
+    let buch = buchberger(&[f1.clone(), f2.clone()]).unwrap();
+    prop_assert!(
+        is_groebner_basis(buch.elements()),
+        "Buchberger's output: {buch:?}"
+    );
+    let completed = buchberger(stam.elements()).unwrap();
+    prop_assert_eq!(&completed, &buch, "same reduced basis, same ideal");
+    if is_groebner_basis(stam.elements()) {
+        prop_assert_eq!(
+            reduce_basis(stam.elements()),
+            buch.elements().to_vec(),
+            "reduced Stam"
+        );
+    }
+    let sol = solve(
+        &f1.to_f64(),
+        &f2.to_f64(),
+        &SolveOptions {
+            method: Method::Stam,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    if sol.verdict == Verdict::Finite && !pts.iter().any(|p| singular_at(&f1, &f2, p)) {
+        for p in &pts {
+            prop_assert!(
+                found(&sol.roots, p, POS_TOL),
+                "f64 Stam missed {p:?}: {sol:?}"
+            );
+        }
+    }
+    Ok(())
+}
+
+/// `Σ c·u^i·v^j` from `(c, i, j)` integer triples.
+fn qb(terms: &[(i64, usize, usize)]) -> QBiPoly {
+    BiPoly::from_terms(terms.iter().map(|&(c, i, j)| (q(c), i, j)))
+}
+
+fn r(n: i64, d: i64) -> Rat {
+    q(n) / q(d)
+}
+
+// The seeds of `systems.proptest-regressions`, as named deterministic tests (proptest replays
+// the file too, but a seed is not a name and says nothing of what it caught).
+
+/// Seed `4e01c31e` (commit 8f63ca4): `F1 = (1 − 4u)·g1` has the factor `(u − 1/4)` twice, so
+/// the planted root `(1/4, 4/5)` is singular (the curves are tangent there). Caught: the
+/// exact methods must still find it, and the `f64` ones must not report a wrong root set.
+#[test]
+fn seed_4e01_singular_planted_root() {
+    let pts = [(r(4, 5), r(3, 7)), (r(1, 4), r(4, 5))];
+    let a = [qb(&[(1, 0, 0), (-4, 1, 0)]), qb(&[(-1, 0, 0), (4, 1, 0)])];
+    let b = [BiPoly::zero(), qb(&[(1, 0, 1)])];
+    check_planted(pts.clone(), a.clone(), b.clone()).unwrap();
+    check_stam_buchberger(pts, a, b).unwrap();
+}
+
+/// Seed `f771e6b8` (commit 8f63ca4): `F1 = −(2 + u)·g1` is free of `v` and `F2 = v·g2`, so
+/// each planted `u` carries two hits (`v = 0` and the planted `v`): a double root of the
+/// resultant shared by two intersections. Caught: both hits at one `u` must be reported.
+#[test]
+fn seed_f771_two_hits_share_one_u() {
+    let pts = [(r(3, 5), r(1, 7)), (r(1, 8), r(1, 5))];
+    let a = [qb(&[(-2, 0, 0), (-1, 1, 0)]), BiPoly::zero()];
+    let b = [BiPoly::zero(), qb(&[(1, 0, 1)])];
+    check_planted(pts.clone(), a.clone(), b.clone()).unwrap();
+    check_stam_buchberger(pts, a, b).unwrap();
+}
+
+/// Seed `ff01b031` (commit 8f63ca4): two planted roots `2.5e-2` apart in `u` with full
+/// bilinear multipliers. Caught with the other two seeds of that commit; kept as found.
+#[test]
+fn seed_ff01_two_planted_roots_close_in_u() {
+    let pts = [(r(1, 10), r(1, 7)), (r(1, 8), r(1, 5))];
+    let a = [qb(&[(1, 1, 0), (1, 0, 1), (1, 1, 1)]), qb(&[(3, 0, 0)])];
+    let b = [
+        qb(&[(-3, 0, 0), (2, 1, 0), (3, 0, 1), (-2, 1, 1)]),
+        qb(&[(-2, 0, 0), (4, 1, 0), (2, 0, 1), (-4, 1, 1)]),
+    ];
+    check_planted(pts, a, b).unwrap();
+}
+
+/// Seed `42fec2b5` (commit fafaf90): two planted roots 2.4e-4 apart in `u`. Caught: the `f64`
+/// resultant's critical point midway between them passed as a "near-double root" and its
+/// polished candidate passed the residual test, a spurious third root.
+#[test]
+fn seed_42fe_no_spurious_third_root_between_close_roots() {
+    let pts = [(r(3, 5), r(2, 7)), (r(5, 8), r(1, 5))];
+    let a = [
+        qb(&[(-2, 1, 0), (-1, 0, 1), (3, 1, 1)]),
+        qb(&[(-3, 0, 0), (-3, 1, 0), (2, 0, 1), (1, 1, 1)]),
+    ];
+    let b = [
+        qb(&[(-1, 0, 0), (2, 1, 0), (-2, 0, 1)]),
+        qb(&[(-2, 1, 0), (-3, 0, 1), (3, 1, 1)]),
+    ];
+    check_planted(pts, a, b).unwrap();
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(24))]
 
     /// Moderate degree (resultant degree ≤ 10): every planted root is found by exact Stam,
-    /// exact and `f64` resultants; `f64` and exact agree on the whole root set.
+    /// exact and `f64` resultants; `f64` and exact agree on the whole root set
+    /// ([`check_planted`]).
     #[test]
     fn planted_roots_are_found(pts in arb_points(),
                                a1 in arb_poly(1, 1), a2 in arb_poly(1, 1),
                                b1 in arb_poly(1, 1), b2 in arb_poly(1, 1)) {
-        let (f1, f2) = planted_system(pts.clone(), [a1, a2], [b1, b2]);
-        let exact = solve(&f1, &f2, &SolveOptions { method: Method::Stam, ..Default::default() })
-            .unwrap();
-        prop_assume!(exact.verdict == Verdict::Finite); // a common curve is possible, rarely
-        for p in &pts {
-            let tol = tol_at(&f1, &f2, p);
-            prop_assert!(found(&exact.roots, p, tol), "exact Stam missed {p:?}: {:?}", exact.roots);
-        }
-        let (g1, g2) = (f1.to_f64(), f2.to_f64());
-        let singular = pts.iter().any(|p| singular_at(&f1, &f2, p));
-        for m in [Method::Resultant, Method::BezoutResultant] {
-            let opts = SolveOptions { method: m, ..Default::default() };
-            let ex = solve(&f1, &f2, &opts).unwrap();
-            let fl = solve(&g1, &g2, &opts).unwrap();
-            for p in &pts {
-                let tol = tol_at(&f1, &f2, p);
-                prop_assert!(found(&ex.roots, p, tol), "{m:?} exact missed {p:?}");
-            }
-            prop_assert_eq!(ex.roots.len(), exact.roots.len(), "{:?}: {:?} vs {:?}", m, ex.roots, exact.roots);
-            if singular {
-                continue;
-            }
-            // f64 finds every planted root, and the same root set as exact Stam.
-            for p in &pts {
-                prop_assert!(found(&fl.roots, p, POS_TOL), "{m:?} f64 missed {p:?}");
-            }
-            prop_assert_eq!(fl.roots.len(), exact.roots.len(), "{:?} f64: {:?} vs {:?}", m, fl.roots, exact.roots);
-            for r in &fl.roots {
-                prop_assert!(exact.roots.iter().any(|e| (e.u - r.u).abs() <= SINGULAR_POS_TOL && (e.v - r.v).abs() <= SINGULAR_POS_TOL),
-                    "{m:?} f64 root {r:?} not among exact {:?}", exact.roots);
-            }
-        }
-        // The f64 Gröbner methods (certified basis, or the resultant when the basis cannot be
-        // certified) find the same root set.
-        if !singular {
-            for m in [Method::Stam, Method::Buchberger] {
-                let fl = solve(&g1, &g2, &SolveOptions { method: m, ..Default::default() }).unwrap();
-                for p in &pts {
-                    prop_assert!(found(&fl.roots, p, POS_TOL), "{m:?} f64 missed {p:?}: {:?}", fl);
-                }
-                prop_assert_eq!(fl.roots.len(), exact.roots.len(), "{:?} f64: {:?} vs {:?}", m, fl.roots, exact.roots);
-            }
-        }
+        check_planted(pts, [a1, a2], [b1, b2])?;
     }
 
     /// Low degree (resultant degree ≤ 6): Stam's loop and Buchberger generate the same ideal,
-    /// Buchberger's output is a Gröbner basis, and `f64` Stam finds the planted roots too.
+    /// Buchberger's output is a Gröbner basis, and `f64` Stam finds the planted roots too
+    /// ([`check_stam_buchberger`]).
     #[test]
     fn stam_and_buchberger_agree(pts in arb_points(),
                                  a1 in arb_poly(1, 0), a2 in arb_poly(1, 0),
                                  b1 in arb_poly(0, 1), b2 in arb_poly(0, 1)) {
-        let (f1, f2) = planted_system(pts.clone(), [a1, a2], [b1, b2]);
-        prop_assume!(!f1.is_zero() && !f2.is_zero());
-        let stam = stam_basis(&f1, &f2).unwrap();
-        let buch = buchberger(&[f1.clone(), f2.clone()]).unwrap();
-        prop_assert!(is_groebner_basis(buch.elements()), "Buchberger's output: {buch:?}");
-        let completed = buchberger(stam.elements()).unwrap();
-        prop_assert_eq!(&completed, &buch, "same reduced basis, same ideal");
-        if is_groebner_basis(stam.elements()) {
-            prop_assert_eq!(reduce_basis(stam.elements()), buch.elements().to_vec(), "reduced Stam");
-        }
-        let sol = solve(&f1.to_f64(), &f2.to_f64(), &SolveOptions { method: Method::Stam, ..Default::default() })
-            .unwrap();
-        if sol.verdict == Verdict::Finite && !pts.iter().any(|p| singular_at(&f1, &f2, p)) {
-            for p in &pts {
-                prop_assert!(found(&sol.roots, p, POS_TOL), "f64 Stam missed {p:?}: {sol:?}");
-            }
-        }
+        check_stam_buchberger(pts, [a1, a2], [b1, b2])?;
     }
 }
 
