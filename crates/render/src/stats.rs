@@ -6,6 +6,7 @@ use std::time::Duration;
 
 use poly::{IsolationMethod, RefineMethod, RootStats, STATS_DEGREES};
 
+use crate::aggregate::BvhInfo;
 use crate::surface::{PatchStats, SurfaceKind};
 use crate::workspace::RootMethods;
 
@@ -47,6 +48,11 @@ pub struct TraceStats {
     pub roots: RootStats,
     /// Bézier patch intersections: Stam's table (basis size, degrees) and rejections.
     pub patches: PatchStats,
+    /// Nodes of the scene's BVH visited by nearest-hit and shadow queries.
+    pub bvh_node_visits: u64,
+    /// The scene's BVH as built (recorded once per render by [`render`](crate::render); kept,
+    /// not summed, by [`TraceStats::merge`]).
+    pub bvh: BvhInfo,
 }
 
 /// Counters for one kind of surface.
@@ -54,7 +60,7 @@ pub struct TraceStats {
 pub struct KindStats {
     /// Nearest-hit queries.
     pub tests: u64,
-    /// Nearest-hit queries that returned a hit closer than the current nearest.
+    /// Nearest-hit queries that returned a hit (each primitive is asked over the whole range).
     pub hits: u64,
     /// Occlusion (shadow) queries.
     pub shadow_tests: u64,
@@ -95,6 +101,10 @@ impl TraceStats {
         self.singular_normals += o.singular_normals;
         self.roots.merge(&o.roots);
         self.patches.merge(&o.patches);
+        self.bvh_node_visits += o.bvh_node_visits;
+        if o.bvh.nodes > 0 {
+            self.bvh = o.bvh;
+        }
     }
 
     /// All rays traced.
@@ -182,6 +192,20 @@ impl fmt::Display for StatsReport<'_> {
                 k.bbox_rejects
             )?;
         }
+        let b = &s.bvh;
+        writeln!(
+            f,
+            "Scene BVH: {} items, {} nodes, depth {}, built in {:.1} ms",
+            b.items,
+            b.nodes,
+            b.depth,
+            b.build.as_secs_f64() * 1e3
+        )?;
+        writeln!(
+            f,
+            "  node visits per ray               {:>12.2}",
+            s.bvh_node_visits as f64 / s.total_rays().max(1) as f64
+        )?;
         writeln!(f, "Work skipped")?;
         writeln!(
             f,

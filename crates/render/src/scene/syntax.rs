@@ -209,11 +209,15 @@ pub enum ShapeType {
     BezierPatch,
     /// `BEZIER_MESH`: `Control points` (a `.bpt` file of patches), `Method`.
     BezierMesh,
+    /// `CONE`: `Base`, `BaseRadius`, `Apex`, `ApexRadius`, `Caps`.
+    Cone,
+    /// `CYLINDER`: `Base`, `Apex`, `Radius`, `Caps`.
+    Cylinder,
 }
 
 impl ShapeType {
     /// Every type.
-    pub const ALL: [ShapeType; 10] = [
+    pub const ALL: [ShapeType; 12] = [
         ShapeType::Sphere,
         ShapeType::Plane,
         ShapeType::Polygon,
@@ -224,6 +228,8 @@ impl ShapeType {
         ShapeType::AlgebraicSurface,
         ShapeType::BezierPatch,
         ShapeType::BezierMesh,
+        ShapeType::Cone,
+        ShapeType::Cylinder,
     ];
 
     /// The type as written after `Type =`.
@@ -239,6 +245,8 @@ impl ShapeType {
             ShapeType::AlgebraicSurface => "ALGEBRAIC_SURFACE",
             ShapeType::BezierPatch => "BEZIER_PATCH",
             ShapeType::BezierMesh => "BEZIER_MESH",
+            ShapeType::Cone => "CONE",
+            ShapeType::Cylinder => "CYLINDER",
         }
     }
 
@@ -254,6 +262,14 @@ impl ShapeType {
             ShapeType::Torus => &[Key::Center, Key::Axis, Key::MajorRadius, Key::MinorRadius],
             ShapeType::AlgebraicSurface => &[Key::Equation],
             ShapeType::BezierPatch | ShapeType::BezierMesh => &[Key::ControlPoints, Key::Method],
+            ShapeType::Cone => &[
+                Key::Base,
+                Key::BaseRadius,
+                Key::Apex,
+                Key::ApexRadius,
+                Key::Caps,
+            ],
+            ShapeType::Cylinder => &[Key::Base, Key::Apex, Key::Radius, Key::Caps],
         }
     }
 }
@@ -429,6 +445,16 @@ keys! {
     Color1 => "Color1",
     /// `Color2 = colour` (checker `#texture`).
     Color2 => "Color2",
+    /// `Base = (x, y, z)` (cone, cylinder: centre of the base circle).
+    Base => "Base",
+    /// `Apex = (x, y, z)` (cone, cylinder: centre of the apex circle).
+    Apex => "Apex",
+    /// `BaseRadius = r` (cone).
+    BaseRadius => "BaseRadius",
+    /// `ApexRadius = r` (cone).
+    ApexRadius => "ApexRadius",
+    /// `Caps = ON|OFF` (cone, cylinder: flat disks close the ends; default OFF).
+    Caps => "Caps",
 }
 
 impl Key {
@@ -526,6 +552,9 @@ fn object_key_use(shape: Option<ShapeType>, key: Key) -> KeyUse {
     }
     let shape_kind = match key {
         Key::Radius | Key::Radius2 | Key::Power | Key::MajorRadius | Key::MinorRadius => V::Number,
+        Key::BaseRadius | Key::ApexRadius => V::Number,
+        Key::Base | Key::Apex => V::Vector,
+        Key::Caps => V::Switch,
         Key::Equation => V::Number,
         Key::Center | Key::Origin | Key::Normal | Key::Min | Key::Max | Key::Axis => V::Vector,
         Key::A | Key::B | Key::C | Key::D | Key::Size => V::Vector,
@@ -1594,8 +1623,8 @@ mod tests {
                 "t.scene:1:22: key `Radius` does not apply to type TORUS in #object",
             ),
             (
-                "#object Type = CONE",
-                "t.scene:1:16: unknown value `CONE` for `Type` (expected SPHERE, PLANE, POLYGON, TRIANGLE, BOX, SUPERQUADRIC, TORUS, ALGEBRAIC_SURFACE, BEZIER_PATCH or BEZIER_MESH)",
+                "#object Type = CUBE",
+                "t.scene:1:16: unknown value `CUBE` for `Type` (expected SPHERE, PLANE, POLYGON, TRIANGLE, BOX, SUPERQUADRIC, TORUS, ALGEBRAIC_SURFACE, BEZIER_PATCH, BEZIER_MESH, CONE or CYLINDER)",
             ),
             (
                 "#world Shadows = MAYBE",

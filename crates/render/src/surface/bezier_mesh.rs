@@ -40,9 +40,9 @@ use groebner::{
 use poly::{Rat, Scalar};
 
 use super::bezier_patch::BezierPatch;
-use super::patch_bvh::PatchBvh;
 use super::patch_stats::PatchStats;
 use super::{Hit, Surface, SurfaceGeometry, SurfaceKind};
+use crate::aggregate::Bvh;
 use crate::geometry::{Bounds3, Ray, gamma};
 use crate::workspace::Workspace;
 
@@ -423,7 +423,7 @@ pub struct PatchHit {
 pub struct BezierMesh {
     patches: Vec<BezierPatch>,
     pieces: Vec<SubPatch>,
-    bvh: PatchBvh,
+    bvh: Bvh,
     bounds: Bounds3,
     method: PatchMethod,
     solve_opts: SolveOptions,
@@ -479,7 +479,7 @@ impl BezierMesh {
             ..SolveOptions::default()
         };
         Some(BezierMesh {
-            bvh: PatchBvh::new(&boxes),
+            bvh: Bvh::new(&boxes),
             patches,
             pieces,
             bounds,
@@ -528,13 +528,9 @@ impl BezierMesh {
         any: bool,
     ) -> Option<(PatchHit, u32)> {
         let mut best: Option<(PatchHit, u32)> = None;
-        let mut misses = 0;
-        self.bvh.traverse(
-            ray,
-            t_range.start,
-            t_range.end,
-            &mut misses,
-            |item, t_max| {
+        let mut visits = 0;
+        self.bvh
+            .traverse(ray, t_range.clone(), &mut visits, |item, t_max| {
                 let piece = &self.pieces[item as usize];
                 if let Some((t, s, r)) =
                     self.test_piece(piece, ray, t_range.start..t_max, stats, solver)
@@ -554,9 +550,8 @@ impl BezierMesh {
                     return Some(t);
                 }
                 Some(t_max)
-            },
-        );
-        stats.bbox_rejects += misses;
+            });
+        stats.bvh_node_visits += visits;
         best
     }
 

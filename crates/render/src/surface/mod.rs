@@ -23,8 +23,9 @@ mod algebraic;
 mod bezier_mesh;
 mod bezier_patch;
 mod bpt;
+mod cone;
 mod implicit;
-mod patch_bvh;
+mod mesh;
 mod patch_stats;
 mod plane;
 mod polygon;
@@ -41,7 +42,9 @@ pub use bezier_mesh::{
 };
 pub use bezier_patch::{BezierPatch, MAX_PATCH_DEGREE, POWER_ZERO_REL, PatchError};
 pub use bpt::{BptError, MAX_BPT_PATCHES, parse_bpt, parse_control_points};
+pub use cone::{Cone, ConeSide};
 pub use implicit::{ENTRY_MARGIN_REL, Implicit, ImplicitFn, ROOT_X_TOL_REL, SINGULAR_P_ERR_REL};
+pub use mesh::SmoothPolygon;
 pub use patch_stats::{HIST_BINS, PatchStats};
 pub use plane::Plane;
 pub use polygon::Polygon;
@@ -101,11 +104,17 @@ pub enum SurfaceKind {
     Algebraic,
     /// [`BezierMesh`] (one or more Bézier patches).
     BezierPatch,
+    /// [`Cone`] with different end radii.
+    Cone,
+    /// [`Cone`] with equal end radii.
+    Cylinder,
+    /// [`SmoothPolygon`] (NFF's polygonal patch: vertex normals).
+    PolygonPatch,
 }
 
 impl SurfaceKind {
     /// Number of kinds.
-    pub const COUNT: usize = 9;
+    pub const COUNT: usize = 12;
     /// Every kind, in [`SurfaceKind::index`] order.
     pub const ALL: [SurfaceKind; SurfaceKind::COUNT] = [
         SurfaceKind::Sphere,
@@ -117,6 +126,9 @@ impl SurfaceKind {
         SurfaceKind::Torus,
         SurfaceKind::Algebraic,
         SurfaceKind::BezierPatch,
+        SurfaceKind::Cone,
+        SurfaceKind::Cylinder,
+        SurfaceKind::PolygonPatch,
     ];
 
     /// Position in [`SurfaceKind::ALL`] and in per-kind statistics arrays.
@@ -136,6 +148,9 @@ impl SurfaceKind {
             SurfaceKind::Torus => "TORUS",
             SurfaceKind::Algebraic => "ALGEBRAIC",
             SurfaceKind::BezierPatch => "BEZIER_PATCH",
+            SurfaceKind::Cone => "CONE",
+            SurfaceKind::Cylinder => "CYLINDER",
+            SurfaceKind::PolygonPatch => "POLYGON_PATCH",
         }
     }
 }
