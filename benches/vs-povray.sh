@@ -3,6 +3,11 @@
 #   benches/vs-povray.sh [SIZE]        (default 840: SIZE x SIZE pixels, no anti-aliasing)
 # Scenes: torus, whitted-torus, barth, teapot, teapot-resultant (scenes/*.scene and their equivalents
 # benches/pov/*.pov; the teapot's patches are converted from scenes/teapot.bpt here).
+# Then the Standard Procedural Databases at 512 x 512 (NFF for us, the generators' .pov twins for
+# POV-Ray; from $SPD_DIR, default ../shared/data/spd beside the repository, else scenes/spd), with
+# each renderer's peak memory (/usr/bin/time -v), and an n x n torus grid over a plane at 400 x 400
+# (generated here in both languages; n = 3, 10, 30, 60).
+# VS_POVRAY_ONLY=classic|spd|grid runs one section.
 # Both renderers get every core (`nproc`). Prints each wall time and the ratio ours / POV-Ray,
 # then the tracing phase alone: POV-Ray's "Trace Time" and ours (`--stats`, "trace").
 # Without POV-Ray it says so and exits 0. Images go to a temporary directory, printed at the end.
@@ -31,6 +36,8 @@ awk 'NR == 1 { next }
      NF == 3 { printf "%s  <%s, %s, %s>\n", (n ? "," : ""), $1, $2, $3; n++ }
      END { if (n) print "}" }' "$root/scenes/teapot.bpt" >"$out/teapot-patches.inc"
 
+only=${VS_POVRAY_ONLY:-all}
+if [ "$only" = all ] || [ "$only" = classic ]; then
 printf '%-17s %12s %12s %14s %14s %14s\n' scene "POV-Ray (s)" "ours (s)" "ours/POV-Ray" \
     "POV trace (s)" "our trace (s)"
 # teapot-resultant is teapot.scene with Kajiya's resultant: the same POV-Ray file.
@@ -52,4 +59,65 @@ for scene in torus whitted-torus barth teapot teapot-resultant; do
         'BEGIN { p = b - a; o = c - b;
                  printf "%-17s %12.3f %12.3f %14.2f %14s %14s\n", s, p, o, o / p, pt, ot }'
 done
-echo "size ${size}x${size}, $threads threads each; images and logs in $out"
+echo "size ${size}x${size}, $threads threads each"
+fi
+
+# One timed run of each renderer: wall time (s) and peak resident memory (MB), from GNU time.
+timed() { # LOG CMD... -> prints "WALL MB"
+    local log=$1; shift
+    /usr/bin/time -v "$@" >"$log" 2>&1 || { echo "failed: $* (see $log)" >&2; exit 1; }
+    awk -F': ' '/Elapsed \(wall clock\)/ { n = split($2, p, ":"); w = 0;
+                    for (i = 1; i <= n; i++) w = w * 60 + p[i] }
+                /Maximum resident set size/ { m = $2 / 1024 }
+                END { printf "%.3f %.1f", w, m }' "$log"
+}
+
+compare() { # NAME OURS-SCENE POV-SCENE SIZE
+    local name=$1 ours=$2 pov=$3 px=$4
+    read -r pw pm < <(timed "$out/$name-povray.log" povray +I"$pov" +L"$(dirname "$pov")" \
+        +O"$out/$name-povray.png" +W"$px" +H"$px" -A -D +WT"$threads")
+    read -r ow om < <(timed "$out/$name-ours.log" "$render" "$ours" -o "$out/$name-ours.png" \
+        --size "${px}x${px}" --threads "$threads" --stats)
+    awk -v s="$name" -v pw="$pw" -v ow="$ow" -v pm="$pm" -v om="$om" \
+        'BEGIN { printf "%-17s %12.3f %12.3f %14.2f %12.1f %12.1f\n", s, pw, ow, ow / pw, pm, om }'
+}
+
+if [ "$only" = all ] || [ "$only" = spd ]; then
+spd=${SPD_DIR:-$root/../shared/data/spd}
+[ -f "$spd/balls.nff" ] || spd=$root/scenes/spd
+echo
+printf '%-17s %12s %12s %14s %12s %12s\n' "SPD (512x512)" "POV-Ray (s)" "ours (s)" "ours/POV-Ray" \
+    "POV MB" "our MB"
+for f in "$spd"/*.nff; do
+    name=$(basename "$f" .nff)
+    compare "$name" "$f" "$spd/$name.pov" 512
+done
+fi
+
+if [ "$only" = all ] || [ "$only" = grid ]; then
+echo
+printf '%-17s %12s %12s %14s %12s %12s\n' "torus grid (400)" "POV-Ray (s)" "ours (s)" "ours/POV-Ray" \
+    "POV MB" "our MB"
+for n in 3 10 30 60; do
+    # n x n tori (R = 0.35, r = 0.12, spacing 1) over a plane, seen from above and in front.
+    awk -v n="$n" 'BEGIN {
+        e = n * 0.9 + 3;
+        printf "#world BackGnd = 0.2 Shadows = ON\n#camera Eye = (0, -%g, %g) LookAt = (0, 0, 0) Up = (0, 0, 1) ViewField = 50\n", e, e * 0.8;
+        printf "#light Source = (%g, -%g, %g) Color = 1\n", e, e, 2 * e;
+        printf "#object Type = PLANE Origin = (0, 0, -0.2) Normal = (0, 0, 1) Cs = (0.6, 0.6, 0.6)\n";
+        for (i = 0; i < n; i++) for (j = 0; j < n; j++)
+            printf "#object Type = TORUS Center = (%g, %g, 0) Axis = (0, 0, 1) MajorRadius = 0.35 MinorRadius = 0.12 Cs = (0.8, 0.3, 0.2) Ka = 0.1 Kd = 0.7\n", i - (n - 1) / 2, j - (n - 1) / 2 }' \
+        >"$out/grid-$n.scene"
+    awk -v n="$n" 'BEGIN {
+        e = n * 0.9 + 3;
+        printf "#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\n";
+        printf "camera { location <0, -%g, %g> sky <0, 0, 1> up <0, 0, 1> right <-1, 0, 0> angle 50 look_at <0, 0, 0> }\n", e, e * 0.8;
+        printf "background { rgb 0.2 }\nlight_source { <%g, -%g, %g> rgb 1 }\n", e, e, 2 * e;
+        printf "plane { z, -0.2 pigment { rgb 0.6 } finish { ambient 0.1 diffuse 0.9 } }\n";
+        for (i = 0; i < n; i++) for (j = 0; j < n; j++)
+            printf "torus { 0.35, 0.12 rotate x*90 translate <%g, %g, 0> pigment { rgb <0.8, 0.3, 0.2> } finish { ambient 0.1 diffuse 0.7 } }\n", i - (n - 1) / 2, j - (n - 1) / 2 }' \
+        >"$out/grid-$n.pov"
+    compare "grid-$((n * n))" "$out/grid-$n.scene" "$out/grid-$n.pov" 400
+done
+fi
+echo "$threads threads each; images and logs in $out"

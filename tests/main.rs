@@ -23,3 +23,9 @@ mod stability_exact;
 mod stability_f64;
 // Stability (issue 6): torus and Barth ray polynomials at camera distance 10 000.
 mod stability_rays;
+// Scene BVH (issue 12): traversal equals brute force on random mixed scenes and flat boxes.
+mod aggregate_bvh;
+// NFF input (issue 12): every entity, file:line:col errors, format detection, SPD scenes.
+mod nff_files;
+// Cones and cylinders (issue 12): coverage and depth against closed forms; an SPD golden image.
+mod render_cones;

@@ -24,8 +24,13 @@ fn workspace_root() -> PathBuf {
 }
 
 fn check(scene_name: &str) {
+    check_file(&format!("{scene_name}.scene"), scene_name);
+}
+
+/// [`check`] for the scene file `scenes/FILE` (any format) against `tests/golden/NAME.png`.
+fn check_file(file: &str, scene_name: &str) {
     let root = workspace_root();
-    let scene_path = root.join("scenes").join(format!("{scene_name}.scene"));
+    let scene_path = root.join("scenes").join(file);
     let scene = render::scene::load(&scene_path).unwrap_or_else(|e| panic!("{e}"));
     let prepared = PreparedScene::new(&scene).expect("valid scene");
     let settings = RenderSettings {
@@ -111,6 +116,12 @@ fn golden_barth() {
 #[test]
 fn golden_spheres() {
     check("spheres");
+}
+
+/// The smallest SPD sphereflake (10 spheres over a polygon, 3 lights), read from NFF.
+#[test]
+fn golden_spd_balls_s1() {
+    check_file("spd/balls-s1.nff", "spd-balls-s1");
 }
 
 /// Every scene in `scenes/` renders at a small size, and each golden file is small.

@@ -118,7 +118,7 @@ pub fn render(
             progress(done);
         };
 
-    let stats = if settings.depth {
+    let mut stats = if settings.depth {
         pixels
             .par_chunks_mut(band)
             .zip(depth.par_chunks_mut(band))
@@ -146,6 +146,7 @@ pub fn render(
                 a
             })
     };
+    stats.bvh = scene.aggregate.bvh_info();
     let film = Film {
         width,
         height,

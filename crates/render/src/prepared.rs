@@ -1,6 +1,7 @@
 //! [`PreparedScene`]: the scene turned into traceable primitives (surfaces built, transforms
 //! composed, polynomials precomputed) — what the integrator reads.
 
+use crate::aggregate::{Aggregate, PRUNE_SLACK_REL};
 use crate::geometry::{Bounds3, Transform};
 use crate::methods::{PatchMethod, RootMethods};
 use crate::scene::{
@@ -31,7 +32,16 @@ pub struct PreparedScene {
     pub world: World,
     /// Textures referenced by materials.
     pub textures: Vec<Texture>,
+    /// The primitives' BVH (bounded ones) and the list of unbounded ones, built once here.
+    pub aggregate: Aggregate,
 }
+
+// The BVH's pruning slack covers the implicit surfaces' search below their box entry, so the
+// traversal finds exactly the brute-force nearest hit (aggregate::PRUNE_SLACK_REL).
+const _: () = assert!(
+    PRUNE_SLACK_REL >= 2.0 * crate::surface::ENTRY_MARGIN_REL,
+    "the BVH could prune a hit the surface finds below its box entry"
+);
 
 impl PreparedScene {
     /// Validates `scene` and builds its surfaces with the default solvers (certified Bernstein
@@ -76,7 +86,9 @@ impl PreparedScene {
                 material: object.material.clone(),
             });
         }
+        let boxes: Vec<Option<Bounds3>> = primitives.iter().map(|p| p.surface.bounds()).collect();
         Ok(PreparedScene {
+            aggregate: Aggregate::new(&boxes),
             primitives,
             lights: scene.lights.clone(),
             world: scene.world.clone(),
@@ -189,6 +201,24 @@ fn build_surface(
         ),
         ShapeKind::BezierPatches { patches, method } => place(
             BezierMesh::new(patches, methods.patch_method.unwrap_or(*method))?,
+            world_from_object,
+        ),
+        ShapeKind::Cone {
+            base,
+            base_radius,
+            apex,
+            apex_radius,
+            caps,
+        } => {
+            // Canonical cone along z from the base, placed by a rigid frame (as the torus).
+            let axis = *apex - *base;
+            let frame = Transform::frame(*base, axis)?;
+            let m = world_from_object.compose(&frame)?;
+            let cone = crate::surface::Cone::new(*base_radius, *apex_radius, axis.length(), *caps);
+            place(cone, &m)
+        }
+        ShapeKind::SmoothPolygon { vertices, normals } => place(
+            crate::surface::SmoothPolygon::new(vertices, normals)?,
             world_from_object,
         ),
     })

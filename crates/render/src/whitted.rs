@@ -50,38 +50,45 @@ pub struct PrimarySample {
     pub depth: f64,
 }
 
-/// The nearest hit along `ray` among all primitives: its index and the hit.
+/// The nearest hit along `ray` among all primitives (through the scene's BVH): its index and
+/// the hit.
 pub fn nearest_hit(
     scene: &PreparedScene,
     ray: &Ray,
     t_range: Range<f64>,
     ws: &mut Workspace,
 ) -> Option<(usize, Hit)> {
-    let mut best: Option<(usize, Hit)> = None;
-    let mut t_max = t_range.end;
-    for (i, prim) in scene.primitives.iter().enumerate() {
-        let kind = prim.surface.kind().index();
-        ws.stats.per_kind[kind].tests += 1;
-        if let Some(h) = prim.surface.intersect(ray, t_range.start..t_max, ws) {
+    // Each primitive is asked over the whole range, so its answer does not depend on the
+    // visiting order: the result is the least (t, index), as a loop over all would find.
+    let mut visits = 0;
+    let best = scene
+        .aggregate
+        .nearest(ray, t_range.clone(), &mut visits, |i| {
+            let prim = &scene.primitives[i as usize];
+            let kind = prim.surface.kind().index();
+            ws.stats.per_kind[kind].tests += 1;
+            let h = prim.surface.intersect(ray, t_range.clone(), ws)?;
             ws.stats.per_kind[kind].hits += 1;
-            t_max = h.t;
-            best = Some((i, h));
-        }
-    }
-    best
+            Some((h.t, h))
+        });
+    ws.stats.bvh_node_visits += visits;
+    best.map(|(i, _, h)| (i as usize, h))
 }
 
-/// Whether any primitive blocks `ray` within `t_range`; stops at the first blocker.
+/// Whether any primitive blocks `ray` within `t_range` (through the scene's BVH); stops at the
+/// first blocker.
 pub fn occluded(scene: &PreparedScene, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> bool {
-    for prim in &scene.primitives {
+    let mut visits = 0;
+    let blocked = scene.aggregate.any(ray, t_range.clone(), &mut visits, |i| {
+        let prim = &scene.primitives[i as usize];
         let kind = prim.surface.kind().index();
         ws.stats.per_kind[kind].shadow_tests += 1;
-        if prim.surface.occluded(ray, t_range.clone(), ws) {
-            ws.stats.per_kind[kind].occlusions += 1;
-            return true;
-        }
-    }
-    false
+        let hit = prim.surface.occluded(ray, t_range.clone(), ws);
+        ws.stats.per_kind[kind].occlusions += u64::from(hit);
+        hit
+    });
+    ws.stats.bvh_node_visits += visits;
+    blocked
 }
 
 /// Traces a camera ray (depth 1).

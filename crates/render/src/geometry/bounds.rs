@@ -84,12 +84,23 @@ impl Bounds3 {
     /// component gives infinite slab distances, handled by IEEE arithmetic; `0·∞` (origin on a
     /// slab plane) yields NaN and the comparisons below then keep the other slabs' values.
     pub fn intersect_ray(&self, ray: &Ray, range: Range<f64>) -> Option<Range<f64>> {
+        self.intersect_ray_inv(ray.origin, DVec3::ONE / ray.dir, range)
+    }
+
+    /// [`Bounds3::intersect_ray`] for the ray from `origin` with reciprocal direction `inv`
+    /// (`1/dir` componentwise), which a hierarchy computes once per ray.
+    #[inline]
+    pub fn intersect_ray_inv(
+        &self,
+        origin: DVec3,
+        inv: DVec3,
+        range: Range<f64>,
+    ) -> Option<Range<f64>> {
         let mut t0 = range.start;
         let mut t1 = range.end;
         for k in 0..3 {
-            let inv = 1.0 / ray.dir[k];
-            let mut near = (self.min[k] - ray.origin[k]) * inv;
-            let mut far = (self.max[k] - ray.origin[k]) * inv;
+            let mut near = (self.min[k] - origin[k]) * inv[k];
+            let mut far = (self.max[k] - origin[k]) * inv[k];
             if near > far {
                 std::mem::swap(&mut near, &mut far);
             }

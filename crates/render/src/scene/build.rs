@@ -68,7 +68,8 @@ pub fn parse(text: &str, file: &Path) -> Result<Scene, SceneError> {
 }
 
 /// Reads a scene file and builds the scene: what the `render` command does with its
-/// argument.
+/// argument. NFF files (`.nff`, or recognised by their content: [`is_nff`](super::is_nff))
+/// are read by [`parse_nff`](super::parse_nff) into the same model.
 ///
 /// # Errors
 /// [`SceneError::Read`] when the file cannot be read (or is not UTF-8), otherwise as
@@ -85,6 +86,9 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         path: path.to_owned(),
         source,
     })?;
+    if super::nff::is_nff(path, &text) {
+        return super::nff::parse_nff(&text, path);
+    }
     parse(&text, path)
 }
 
@@ -1031,6 +1035,22 @@ fn build_shape(f: &Fields<'_>, shape: ShapeType, base: &Path) -> Result<ShapeKin
         }
         ShapeType::BezierPatch | ShapeType::BezierMesh => {
             read_patches(f, shape == ShapeType::BezierMesh, base, &detail)?
+        }
+        ShapeType::Cone | ShapeType::Cylinder => {
+            let (r0, r1) = if shape == ShapeType::Cone {
+                let r0 = f.required_number(Key::BaseRadius, &detail)?.0;
+                (r0, f.required_number(Key::ApexRadius, &detail)?.0)
+            } else {
+                let r = f.required_number(Key::Radius, &detail)?.0;
+                (r, r)
+            };
+            ShapeKind::Cone {
+                base: vector(Key::Base)?,
+                base_radius: r0,
+                apex: vector(Key::Apex)?,
+                apex_radius: r1,
+                caps: f.switch(Key::Caps)?.unwrap_or(false),
+            }
         }
     })
 }

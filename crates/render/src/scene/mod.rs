@@ -12,6 +12,7 @@ mod expr;
 mod expr_tests;
 mod lexer;
 mod model;
+mod nff;
 mod print;
 mod syntax;
 
@@ -28,6 +29,7 @@ pub use model::{
 pub use build::{MAX_IMAGE_SIDE, MAX_RECURSION_DEPTH, build, load, parse};
 pub use error::{ErrorKind, SceneError, Span};
 pub use expr::{Axis, BinOp, Expr, ExprKind, MAX_EQUATION_DEGREE, Spanned};
+pub use nff::{MAX_NFF_VERTICES, is_nff, nff_material, parse_nff};
 pub use print::print;
 pub use syntax::{
     Block, Command, Entry, Key, MAX_EXPR_DEPTH, MAX_NESTING, SceneAst, ShapeType, TextureType,

@@ -268,6 +268,29 @@ pub enum ShapeKind {
         /// How `v` is eliminated for each ray.
         method: PatchMethod,
     },
+    /// A truncated cone, or a cylinder when the radii are equal (NFF `c`; `CONE`,
+    /// `CYLINDER`): the surface between the circles about `base` and `apex` in the planes
+    /// normal to the axis `apex − base`.
+    Cone {
+        /// Centre of the base circle.
+        base: DVec3,
+        /// Radius at the base, ≥ 0.
+        base_radius: f64,
+        /// Centre of the apex circle, not `base`.
+        apex: DVec3,
+        /// Radius at the apex, ≥ 0 (not both radii 0).
+        apex_radius: f64,
+        /// Whether flat disks close the ends (NFF's cones are open).
+        caps: bool,
+    },
+    /// A planar polygon with a normal at each vertex (NFF `pp`), shaded with the normals
+    /// interpolated across it.
+    SmoothPolygon {
+        /// At least three coplanar vertices, in order around the boundary.
+        vertices: Vec<DVec3>,
+        /// One non-zero normal per vertex.
+        normals: Vec<DVec3>,
+    },
 }
 
 impl ShapeKind {
@@ -284,6 +307,13 @@ impl ShapeKind {
             ShapeKind::Algebraic { .. } => "ALGEBRAIC_SURFACE",
             ShapeKind::BezierPatches { patches, .. } if patches.len() == 1 => "BEZIER_PATCH",
             ShapeKind::BezierPatches { .. } => "BEZIER_MESH",
+            ShapeKind::Cone {
+                base_radius,
+                apex_radius,
+                ..
+            } if base_radius == apex_radius => "CYLINDER",
+            ShapeKind::Cone { .. } => "CONE",
+            ShapeKind::SmoothPolygon { .. } => "POLYGON_PATCH",
         }
     }
 
@@ -389,6 +419,42 @@ impl ShapeKind {
                     return Err(InvalidModel::new("Control points", "holds no patch"));
                 }
                 Ok(())
+            }
+            ShapeKind::Cone {
+                base,
+                base_radius,
+                apex,
+                apex_radius,
+                ..
+            } => {
+                finite(*base, "Base")?;
+                finite(*apex, "Apex")?;
+                nonzero(*apex - *base, "Apex")?;
+                for (r, key) in [(*base_radius, "BaseRadius"), (*apex_radius, "ApexRadius")] {
+                    if !(r.is_finite() && r >= 0.0) {
+                        return Err(InvalidModel::new(key, "must be a finite number ≥ 0"));
+                    }
+                }
+                if *base_radius == 0.0 && *apex_radius == 0.0 {
+                    return Err(InvalidModel::new("BaseRadius", "and ApexRadius are both 0"));
+                }
+                Ok(())
+            }
+            ShapeKind::SmoothPolygon { vertices, normals } => {
+                if vertices.len() < 3 {
+                    return Err(InvalidModel::new("vertices", "a polygon needs at least 3"));
+                }
+                if normals.len() != vertices.len() {
+                    return Err(InvalidModel::new("normals", "must be one per vertex"));
+                }
+                for (v, n) in vertices.iter().zip(normals) {
+                    finite(*v, "vertices")?;
+                    finite(*n, "normals")?;
+                    nonzero(*n, "normals")?;
+                }
+                polygon_normal(vertices)
+                    .map(|_| ())
+                    .ok_or(InvalidModel::new("vertices", "the polygon has zero area"))
             }
         }
     }

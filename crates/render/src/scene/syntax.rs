@@ -193,11 +193,15 @@ pub enum ShapeType {
     BezierPatch,
     /// `BEZIER_MESH`: `Control points` (a `.bpt` file of patches), `Method`.
     BezierMesh,
+    /// `CONE`: `Base`, `BaseRadius`, `Apex`, `ApexRadius`, `Caps`.
+    Cone,
+    /// `CYLINDER`: `Base`, `Apex`, `Radius`, `Caps`.
+    Cylinder,
 }
 
 impl ShapeType {
     /// Every type.
-    pub const ALL: [ShapeType; 10] = [
+    pub const ALL: [ShapeType; 12] = [
         ShapeType::Sphere,
         ShapeType::Plane,
         ShapeType::Polygon,
@@ -208,6 +212,8 @@ impl ShapeType {
         ShapeType::AlgebraicSurface,
         ShapeType::BezierPatch,
         ShapeType::BezierMesh,
+        ShapeType::Cone,
+        ShapeType::Cylinder,
     ];
 
     /// The type as written after `Type =`.
@@ -223,6 +229,8 @@ impl ShapeType {
             ShapeType::AlgebraicSurface => "ALGEBRAIC_SURFACE",
             ShapeType::BezierPatch => "BEZIER_PATCH",
             ShapeType::BezierMesh => "BEZIER_MESH",
+            ShapeType::Cone => "CONE",
+            ShapeType::Cylinder => "CYLINDER",
         }
     }
 
@@ -238,6 +246,14 @@ impl ShapeType {
             ShapeType::Torus => &[Key::Center, Key::Axis, Key::MajorRadius, Key::MinorRadius],
             ShapeType::AlgebraicSurface => &[Key::Equation],
             ShapeType::BezierPatch | ShapeType::BezierMesh => &[Key::ControlPoints, Key::Method],
+            ShapeType::Cone => &[
+                Key::Base,
+                Key::BaseRadius,
+                Key::Apex,
+                Key::ApexRadius,
+                Key::Caps,
+            ],
+            ShapeType::Cylinder => &[Key::Base, Key::Apex, Key::Radius, Key::Caps],
         }
     }
 }
@@ -413,6 +429,16 @@ keys! {
     Color1 => "Color1",
     /// `Color2 = colour` (checker `#texture`).
     Color2 => "Color2",
+    /// `Base = (x, y, z)` (cone, cylinder: centre of the base circle).
+    Base => "Base",
+    /// `Apex = (x, y, z)` (cone, cylinder: centre of the apex circle).
+    Apex => "Apex",
+    /// `BaseRadius = r` (cone).
+    BaseRadius => "BaseRadius",
+    /// `ApexRadius = r` (cone).
+    ApexRadius => "ApexRadius",
+    /// `Caps = ON|OFF` (cone, cylinder: flat disks close the ends; default OFF).
+    Caps => "Caps",
 }
 
 impl Key {
@@ -510,6 +536,9 @@ fn object_key_use(shape: Option<ShapeType>, key: Key) -> KeyUse {
     }
     let shape_kind = match key {
         Key::Radius | Key::Radius2 | Key::Power | Key::MajorRadius | Key::MinorRadius => V::Number,
+        Key::BaseRadius | Key::ApexRadius => V::Number,
+        Key::Base | Key::Apex => V::Vector,
+        Key::Caps => V::Switch,
         Key::Equation => V::Number,
         Key::Center | Key::Origin | Key::Normal | Key::Min | Key::Max | Key::Axis => V::Vector,
         Key::A | Key::B | Key::C | Key::D | Key::Size => V::Vector,
@@ -920,7 +949,7 @@ impl<'a> Parser<'a> {
                 }
             }
             ValueKind::Shape => {
-                const TYPES: &str = "SPHERE, PLANE, POLYGON, TRIANGLE, BOX, SUPERQUADRIC, TORUS, ALGEBRAIC_SURFACE, BEZIER_PATCH or BEZIER_MESH";
+                const TYPES: &str = "SPHERE, PLANE, POLYGON, TRIANGLE, BOX, SUPERQUADRIC, TORUS, ALGEBRAIC_SURFACE, BEZIER_PATCH, BEZIER_MESH, CONE or CYLINDER";
                 let (w, span) = self.word_value(key, "an object type")?;
                 match ShapeType::ALL
                     .into_iter()
@@ -1578,8 +1607,8 @@ mod tests {
                 "t.scene:1:22: key `Radius` does not apply to type TORUS in #object",
             ),
             (
-                "#object Type = CONE",
-                "t.scene:1:16: unknown value `CONE` for `Type` (expected SPHERE, PLANE, POLYGON, TRIANGLE, BOX, SUPERQUADRIC, TORUS, ALGEBRAIC_SURFACE, BEZIER_PATCH or BEZIER_MESH)",
+                "#object Type = CUBE",
+                "t.scene:1:16: unknown value `CUBE` for `Type` (expected SPHERE, PLANE, POLYGON, TRIANGLE, BOX, SUPERQUADRIC, TORUS, ALGEBRAIC_SURFACE, BEZIER_PATCH, BEZIER_MESH, CONE or CYLINDER)",
             ),
             (
                 "#world Shadows = MAYBE",

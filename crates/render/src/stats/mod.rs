@@ -10,6 +10,7 @@ use crate::methods::RootMethods;
 
 mod patch;
 
+use crate::aggregate::BvhInfo;
 pub use patch::{HIST_BINS, PatchStats};
 
 /// Counters filled in while tracing. Each worker thread owns one (inside its
@@ -50,6 +51,11 @@ pub struct TraceStats {
     pub roots: RootStats,
     /// Bézier patch intersections: Stam's table (basis size, degrees) and rejections.
     pub patches: PatchStats,
+    /// Nodes of the scene's BVH visited by nearest-hit and shadow queries.
+    pub bvh_node_visits: u64,
+    /// The scene's BVH as built (recorded once per render by [`render`](crate::render); kept,
+    /// not summed, by [`TraceStats::merge`]).
+    pub bvh: BvhInfo,
 }
 
 /// Counters for one kind of surface.
@@ -57,7 +63,7 @@ pub struct TraceStats {
 pub struct KindStats {
     /// Nearest-hit queries.
     pub tests: u64,
-    /// Nearest-hit queries that returned a hit closer than the current nearest.
+    /// Nearest-hit queries that returned a hit (each primitive is asked over the whole range).
     pub hits: u64,
     /// Occlusion (shadow) queries.
     pub shadow_tests: u64,
@@ -98,6 +104,10 @@ impl TraceStats {
         self.singular_normals += o.singular_normals;
         self.roots.merge(&o.roots);
         self.patches.merge(&o.patches);
+        self.bvh_node_visits += o.bvh_node_visits;
+        if o.bvh.nodes > 0 {
+            self.bvh = o.bvh;
+        }
     }
 
     /// All rays traced.
@@ -142,11 +152,17 @@ pub enum SurfaceKind {
     Algebraic,
     /// [`BezierMesh`](crate::surface::BezierMesh) (one or more Bézier patches).
     BezierPatch,
+    /// [`Cone`](crate::surface::Cone) with different end radii.
+    Cone,
+    /// [`Cone`](crate::surface::Cone) with equal end radii.
+    Cylinder,
+    /// [`SmoothPolygon`](crate::surface::SmoothPolygon) (NFF's polygonal patch: vertex normals).
+    PolygonPatch,
 }
 
 impl SurfaceKind {
     /// Number of kinds.
-    pub const COUNT: usize = 9;
+    pub const COUNT: usize = 12;
     /// Every kind, in [`SurfaceKind::index`] order.
     pub const ALL: [SurfaceKind; SurfaceKind::COUNT] = [
         SurfaceKind::Sphere,
@@ -158,6 +174,9 @@ impl SurfaceKind {
         SurfaceKind::Torus,
         SurfaceKind::Algebraic,
         SurfaceKind::BezierPatch,
+        SurfaceKind::Cone,
+        SurfaceKind::Cylinder,
+        SurfaceKind::PolygonPatch,
     ];
 
     /// Position in [`SurfaceKind::ALL`] and in per-kind statistics arrays.
@@ -177,6 +196,9 @@ impl SurfaceKind {
             SurfaceKind::Torus => "TORUS",
             SurfaceKind::Algebraic => "ALGEBRAIC",
             SurfaceKind::BezierPatch => "BEZIER_PATCH",
+            SurfaceKind::Cone => "CONE",
+            SurfaceKind::Cylinder => "CYLINDER",
+            SurfaceKind::PolygonPatch => "POLYGON_PATCH",
         }
     }
 }
@@ -245,6 +267,20 @@ impl fmt::Display for StatsReport<'_> {
                 k.bbox_rejects
             )?;
         }
+        let b = &s.bvh;
+        writeln!(
+            f,
+            "Scene BVH: {} items, {} nodes, depth {}, built in {:.1} ms",
+            b.items,
+            b.nodes,
+            b.depth,
+            b.build.as_secs_f64() * 1e3
+        )?;
+        writeln!(
+            f,
+            "  node visits per ray               {:>12.2}",
+            s.bvh_node_visits as f64 / s.total_rays().max(1) as f64
+        )?;
         writeln!(f, "Work skipped")?;
         writeln!(
             f,

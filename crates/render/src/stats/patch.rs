@@ -15,6 +15,8 @@ pub struct PatchStats {
     pub solves: u64,
     /// Ray/sub-patch pairs rejected by a box of the patch BVH before any algebra.
     pub bbox_rejects: u64,
+    /// Nodes of the mesh's [`Bvh`](crate::aggregate::Bvh) visited.
+    pub bvh_node_visits: u64,
     /// Ray/sub-patch pairs whose box the ray crosses but whose control-point hull lies on one
     /// side of a plane through the ray (no algebra needed).
     pub hull_rejects: u64,
@@ -64,6 +66,7 @@ impl PatchStats {
     pub fn merge(&mut self, o: &PatchStats) {
         self.solves += o.solves;
         self.bbox_rejects += o.bbox_rejects;
+        self.bvh_node_visits += o.bvh_node_visits;
         self.hull_rejects += o.hull_rejects;
         for (a, b) in [
             (&mut self.basis_size, &o.basis_size),
@@ -107,6 +110,11 @@ impl fmt::Display for PatchStats {
             f,
             "  BVH box rejections                 {:>12}",
             self.bbox_rejects
+        )?;
+        writeln!(
+            f,
+            "  BVH node visits                    {:>12}",
+            self.bvh_node_visits
         )?;
         writeln!(
             f,

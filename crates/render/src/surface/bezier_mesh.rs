@@ -38,8 +38,8 @@ use groebner::{SolveOptions, SolveWorkspace, Verdict, ray_patch_system, solve, s
 use poly::{Rat, Scalar};
 
 use super::bezier_patch::BezierPatch;
-use super::patch_bvh::PatchBvh;
 use super::{Hit, Surface, SurfaceGeometry, SurfaceKind};
+use crate::aggregate::Bvh;
 use crate::geometry::{Bounds3, Ray, gamma};
 use crate::methods::PatchMethod;
 use crate::scene::ControlNet;
@@ -362,7 +362,7 @@ pub struct PatchHit {
 pub struct BezierMesh {
     patches: Vec<BezierPatch>,
     pieces: Vec<SubPatch>,
-    bvh: PatchBvh,
+    bvh: Bvh,
     bounds: Bounds3,
     method: PatchMethod,
     solve_opts: SolveOptions,
@@ -415,7 +415,7 @@ impl BezierMesh {
             ..SolveOptions::default()
         };
         Some(BezierMesh {
-            bvh: PatchBvh::new(&boxes),
+            bvh: Bvh::new(&boxes),
             patches,
             pieces,
             bounds,
@@ -464,13 +464,9 @@ impl BezierMesh {
         any: bool,
     ) -> Option<(PatchHit, u32)> {
         let mut best: Option<(PatchHit, u32)> = None;
-        let mut misses = 0;
-        self.bvh.traverse(
-            ray,
-            t_range.start,
-            t_range.end,
-            &mut misses,
-            |item, t_max| {
+        let mut visits = 0;
+        self.bvh
+            .traverse(ray, t_range.clone(), &mut visits, |item, t_max| {
                 let piece = &self.pieces[item as usize];
                 if let Some((t, s, r)) =
                     self.test_piece(piece, ray, t_range.start..t_max, stats, solver)
@@ -490,9 +486,8 @@ impl BezierMesh {
                     return Some(t);
                 }
                 Some(t_max)
-            },
-        );
-        stats.bbox_rejects += misses;
+            });
+        stats.bvh_node_visits += visits;
         best
     }
 

@@ -24,8 +24,9 @@ mod aabox;
 mod algebraic;
 mod bezier_mesh;
 mod bezier_patch;
+mod cone;
 mod implicit;
-mod patch_bvh;
+mod mesh;
 mod plane;
 mod polygon;
 mod sphere;
@@ -39,7 +40,9 @@ pub use bezier_mesh::{
     BezierMesh, DEFAULT_SUBDIVISION, HIT_P_ERR_REL, HIT_RESIDUAL_REL, MAX_SUBDIVISION, PatchHit,
 };
 pub use bezier_patch::{BezierPatch, POWER_ZERO_REL};
+pub use cone::{Cone, ConeSide};
 pub use implicit::{ENTRY_MARGIN_REL, Implicit, ImplicitFn, ROOT_X_TOL_REL, SINGULAR_P_ERR_REL};
+pub use mesh::SmoothPolygon;
 pub use plane::Plane;
 pub use polygon::Polygon;
 pub use sphere::Sphere;

@@ -1,0 +1,545 @@
+//! [`Bvh`]: the one bounding-volume hierarchy of the tracer, over any items that have boxes —
+//! the scene's bounded primitives and a Bézier mesh's sub-patches alike.
+//!
+//! Built top-down with the surface area heuristic over [`SAH_BINS`] centroid bins per node
+//! (Wald 2007, "On fast construction of SAH-based bounding volume hierarchies"; pbrt-v4
+//! §7.3.2), the two halves of a large node in parallel (rayon), then flattened depth-first so
+//! that a node's first child follows it and only the second child's index is stored (pbrt-v4
+//! `LinearBVHNode`). Traversal visits the near child first (by the sign of the ray direction
+//! along the node's split axis) and skips every node that starts beyond the nearest hit found
+//! so far. See `paper-notes/bvh.md`.
+
+use std::ops::Range;
+use std::time::{Duration, Instant};
+
+use glam::DVec3;
+
+use crate::geometry::{Bounds3, Ray};
+
+/// Centroid bins per axis of the binned SAH: 16 finds splits within a few percent of the
+/// full sweep's cost at a fraction of its time (Wald 2007, §3: 8–32 bins).
+pub const SAH_BINS: usize = 16;
+
+/// Cost of visiting a node relative to testing one item, in the SAH. A node costs one slab
+/// test; an item costs at least its own slab test and a closed-form root (spheres), usually
+/// a polynomial root search: 1/8 keeps leaves small, which pays when items are expensive.
+pub const TRAVERSAL_COST: f64 = 0.125;
+
+/// Items per leaf at most, unless the items cannot be separated (equal centroids) or the
+/// depth limit is reached.
+pub const MAX_LEAF_ITEMS: usize = 4;
+
+/// Depth limit of the tree (the root has depth 1): a node this deep becomes a leaf whatever
+/// it holds, so the fixed traversal stack of this many entries never overflows.
+pub const MAX_DEPTH: usize = 64;
+
+/// Nodes with more items than this build their two halves in parallel: below it, the
+/// fork-join overhead of rayon exceeds the work.
+const PARALLEL_MIN_ITEMS: usize = 4096;
+
+/// Relative slack of the pruning test: a node is skipped when its entry distance exceeds the
+/// nearest hit so far by more than `PRUNE_SLACK_REL × (|entry| + chord)` (chord = length of
+/// the ray's path through the node). Items may report hits slightly before their own box
+/// entry — an implicit surface starts its root search `ENTRY_MARGIN_REL × (|t0| + chord)`
+/// before the entry (`surface::ENTRY_MARGIN_REL`, 10⁻⁹) so that a hit on the entry face is
+/// kept — and such a hit must not be pruned by a farther one it ties with. Twice that margin
+/// (asserted where the scene builds its hierarchy) keeps the traversal's nearest hit exactly
+/// the brute-force one.
+pub const PRUNE_SLACK_REL: f64 = 2e-9;
+
+/// One node of the flattened tree.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    bounds: Bounds3,
+    /// Leaf: first item in [`Bvh::order`]. Inner: index of the second child (the first child
+    /// is the next node).
+    offset: u32,
+    /// Items in the leaf; 0 for an inner node.
+    count: u32,
+    /// Split axis of an inner node.
+    axis: u8,
+}
+
+/// What `--stats` reports about a hierarchy.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BvhInfo {
+    /// Items (primitives or sub-patches).
+    pub items: usize,
+    /// Nodes, inner and leaf.
+    pub nodes: usize,
+    /// Depth of the deepest leaf (the root alone has depth 1; 0 when empty).
+    pub depth: usize,
+    /// Wall time of the build.
+    pub build: Duration,
+}
+
+/// A flattened binary BVH over items `0..n`, item `i` having box `boxes[i]`.
+#[derive(Clone, Debug, Default)]
+pub struct Bvh {
+    nodes: Vec<Node>,
+    /// Item indices in leaf order.
+    order: Vec<u32>,
+    info: BvhInfo,
+}
+
+/// An item during the build: its index, box and box centre.
+#[derive(Clone, Copy, Debug)]
+struct Item {
+    index: u32,
+    bounds: Bounds3,
+    centre: DVec3,
+}
+
+/// A node of the build tree before flattening.
+#[derive(Debug)]
+enum BuildNode {
+    Leaf {
+        bounds: Bounds3,
+        first: usize,
+        count: usize,
+    },
+    Inner {
+        bounds: Bounds3,
+        axis: u8,
+        children: Box<[BuildNode; 2]>,
+        /// Nodes in this subtree (for the flattened layout).
+        size: usize,
+        depth: usize,
+    },
+}
+
+impl BuildNode {
+    fn size(&self) -> usize {
+        match self {
+            BuildNode::Leaf { .. } => 1,
+            BuildNode::Inner { size, .. } => *size,
+        }
+    }
+
+    fn depth(&self) -> usize {
+        match self {
+            BuildNode::Leaf { .. } => 1,
+            BuildNode::Inner { depth, .. } => *depth,
+        }
+    }
+}
+
+const EMPTY: Bounds3 = Bounds3 {
+    min: DVec3::INFINITY,
+    max: DVec3::NEG_INFINITY,
+};
+
+/// Half the surface area of `b` (the SAH only compares ratios); 0 for an empty box.
+fn half_area(b: &Bounds3) -> f64 {
+    let d = (b.max - b.min).max(DVec3::ZERO);
+    d.x * d.y + d.y * d.z + d.z * d.x
+}
+
+impl Bvh {
+    /// Builds the hierarchy over `boxes`. Boxes must be finite (the caller keeps unbounded
+    /// items out); a flat box (zero extent on an axis) is fine.
+    pub fn new(boxes: &[Bounds3]) -> Self {
+        let start = Instant::now();
+        let mut items: Vec<Item> = boxes
+            .iter()
+            .enumerate()
+            .map(|(i, b)| Item {
+                index: i as u32,
+                bounds: *b,
+                centre: (b.min + b.max) * 0.5,
+            })
+            .collect();
+        let mut bvh = Bvh::default();
+        if items.is_empty() {
+            return bvh;
+        }
+        let root = build(&mut items, 0, 1);
+        bvh.nodes.reserve_exact(root.size());
+        bvh.flatten(&root);
+        bvh.order = items.iter().map(|it| it.index).collect();
+        bvh.info = BvhInfo {
+            items: boxes.len(),
+            nodes: bvh.nodes.len(),
+            depth: root.depth(),
+            build: start.elapsed(),
+        };
+        bvh
+    }
+
+    /// Nodes, depth and build time.
+    pub fn info(&self) -> BvhInfo {
+        self.info
+    }
+
+    /// The box of everything, `None` when empty.
+    pub fn bounds(&self) -> Option<Bounds3> {
+        self.nodes.first().map(|n| n.bounds)
+    }
+
+    fn flatten(&mut self, node: &BuildNode) {
+        match node {
+            BuildNode::Leaf {
+                bounds,
+                first,
+                count,
+            } => self.nodes.push(Node {
+                bounds: *bounds,
+                offset: *first as u32,
+                count: *count as u32,
+                axis: 0,
+            }),
+            BuildNode::Inner {
+                bounds,
+                axis,
+                children,
+                ..
+            } => {
+                let at = self.nodes.len();
+                self.nodes.push(Node {
+                    bounds: *bounds,
+                    offset: 0,
+                    count: 0,
+                    axis: *axis,
+                });
+                self.flatten(&children[0]);
+                self.nodes[at].offset = self.nodes.len() as u32;
+                self.flatten(&children[1]);
+            }
+        }
+    }
+
+    /// Calls `visit(item, t_max)` for the items of every leaf whose box the ray crosses before
+    /// the nearest hit so far, near children first. `visit` returns the new `t_max` (the
+    /// nearest hit so far, pruning farther nodes) or `None` to stop. Counts the nodes visited
+    /// in `visits`. Allocates nothing.
+    pub fn traverse(
+        &self,
+        ray: &Ray,
+        range: Range<f64>,
+        visits: &mut u64,
+        mut visit: impl FnMut(u32, f64) -> Option<f64>,
+    ) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let inv = DVec3::ONE / ray.dir;
+        let dir_neg = [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0];
+        let mut t_max = range.end;
+        let mut stack = [0u32; MAX_DEPTH];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let index = stack[top] as usize;
+            let node = &self.nodes[index];
+            *visits += 1;
+            let Some(Range {
+                start: near,
+                end: far,
+            }) = node
+                .bounds
+                .intersect_ray_inv(ray.origin, inv, range.clone())
+            else {
+                continue;
+            };
+            if near > t_max + PRUNE_SLACK_REL * (near.abs() + (far - near)) {
+                continue;
+            }
+            if node.count > 0 {
+                let first = node.offset as usize;
+                for &item in &self.order[first..first + node.count as usize] {
+                    match visit(item, t_max) {
+                        Some(t) => t_max = t,
+                        None => return,
+                    }
+                }
+            } else {
+                // Push the far child first so the near one is visited first. The depth limit
+                // bounds the stack: each level leaves at most one child on it.
+                let (first, second) = (index as u32 + 1, node.offset);
+                let (near_child, far_child) = if dir_neg[node.axis as usize] {
+                    (second, first)
+                } else {
+                    (first, second)
+                };
+                stack[top] = far_child;
+                stack[top + 1] = near_child;
+                top += 2;
+            }
+        }
+    }
+
+    /// The nearest hit: `hit(item)` is each item's own nearest hit over the whole `range`
+    /// (`(t, data)`), and the result is the least `(t, item)` over all items — the hit a loop
+    /// over every item would keep, ties going to the lower index — with its item. Items are
+    /// queried over the whole range, not up to the nearest hit so far, so that each item's
+    /// answer does not depend on the visiting order.
+    pub fn nearest<H>(
+        &self,
+        ray: &Ray,
+        range: Range<f64>,
+        visits: &mut u64,
+        mut hit: impl FnMut(u32) -> Option<(f64, H)>,
+    ) -> Option<(u32, f64, H)> {
+        let mut best: Option<(u32, f64, H)> = None;
+        self.traverse(ray, range, visits, |item, t_max| {
+            if let Some((t, h)) = hit(item) {
+                let better = match &best {
+                    None => t < t_max,
+                    Some((b, bt, _)) => t < *bt || (t == *bt && item < *b),
+                };
+                if better {
+                    best = Some((item, t, h));
+                    return Some(t);
+                }
+            }
+            Some(t_max)
+        });
+        best
+    }
+
+    /// Whether `blocked(item)` holds for any item whose box the ray crosses in `range`; stops
+    /// at the first blocker.
+    pub fn any(
+        &self,
+        ray: &Ray,
+        range: Range<f64>,
+        visits: &mut u64,
+        mut blocked: impl FnMut(u32) -> bool,
+    ) -> bool {
+        let mut found = false;
+        self.traverse(ray, range, visits, |item, t_max| {
+            if blocked(item) {
+                found = true;
+                None
+            } else {
+                Some(t_max)
+            }
+        });
+        found
+    }
+}
+
+/// Builds the subtree of `items` (which start at `first` in the final item order) at `depth`.
+fn build(items: &mut [Item], first: usize, depth: usize) -> BuildNode {
+    let bounds = items.iter().fold(EMPTY, |b, it| b.union(&it.bounds));
+    let n = items.len();
+    let leaf = BuildNode::Leaf {
+        bounds,
+        first,
+        count: n,
+    };
+    if n == 1 || depth >= MAX_DEPTH {
+        return leaf;
+    }
+    let centres = items
+        .iter()
+        .fold(EMPTY, |b, it| b.union(&Bounds3::new(it.centre, it.centre)));
+    let ext = centres.max - centres.min;
+    let axis = if ext.x >= ext.y && ext.x >= ext.z {
+        0
+    } else if ext.y >= ext.z {
+        1
+    } else {
+        2
+    };
+    let mid = if ext[axis] > 0.0 && ext[axis].is_finite() {
+        match sah_split(items, &bounds, centres.min[axis], ext[axis], axis) {
+            Some(mid) => mid,
+            None => return leaf,
+        }
+    } else if n <= MAX_LEAF_ITEMS {
+        return leaf;
+    } else {
+        // Equal centres: no split separates them; halve by count so leaves stay small.
+        n / 2
+    };
+    let (lo, hi) = items.split_at_mut(mid);
+    let (a, b) = if n > PARALLEL_MIN_ITEMS {
+        rayon::join(
+            || build(lo, first, depth + 1),
+            || build(hi, first + mid, depth + 1),
+        )
+    } else {
+        (
+            build(lo, first, depth + 1),
+            build(hi, first + mid, depth + 1),
+        )
+    };
+    BuildNode::Inner {
+        bounds,
+        axis: axis as u8,
+        size: 1 + a.size() + b.size(),
+        depth: 1 + a.depth().max(b.depth()),
+        children: Box::new([a, b]),
+    }
+}
+
+/// The cheapest binned SAH split of `items` along `axis` (centres spanning `lo .. lo + ext`):
+/// partitions `items` and returns the size of the lower part, or `None` when a leaf is cheaper
+/// (only for at most [`MAX_LEAF_ITEMS`] items).
+fn sah_split(
+    items: &mut [Item],
+    bounds: &Bounds3,
+    lo: f64,
+    ext: f64,
+    axis: usize,
+) -> Option<usize> {
+    let bin_of = |it: &Item| -> usize {
+        // A float-to-int `as` saturates (NaN → 0): any centre lands in some bin.
+        (((it.centre[axis] - lo) / ext * SAH_BINS as f64) as usize).min(SAH_BINS - 1)
+    };
+    let mut counts = [0usize; SAH_BINS];
+    let mut boxes = [EMPTY; SAH_BINS];
+    for it in items.iter() {
+        let b = bin_of(it);
+        counts[b] += 1;
+        boxes[b] = boxes[b].union(&it.bounds);
+    }
+    // Sweep from above: the area and count of bins b.. for each b.
+    let mut above = [(0.0, 0usize); SAH_BINS];
+    let (mut acc, mut cnt) = (EMPTY, 0);
+    for b in (1..SAH_BINS).rev() {
+        acc = acc.union(&boxes[b]);
+        cnt += counts[b];
+        above[b] = (half_area(&acc), cnt);
+    }
+    // Costs are left multiplied by the node's area, so a degenerate (zero-area) node compares
+    // without dividing by zero.
+    let area = half_area(bounds);
+    let (mut acc, mut cnt) = (EMPTY, 0);
+    let mut best = (f64::INFINITY, 0);
+    for b in 0..SAH_BINS - 1 {
+        acc = acc.union(&boxes[b]);
+        cnt += counts[b];
+        let (area_hi, cnt_hi) = above[b + 1];
+        if cnt == 0 || cnt_hi == 0 {
+            continue;
+        }
+        let cost = TRAVERSAL_COST * area + cnt as f64 * half_area(&acc) + cnt_hi as f64 * area_hi;
+        if cost < best.0 {
+            best = (cost, b);
+        }
+    }
+    let n = items.len();
+    if n <= MAX_LEAF_ITEMS && n as f64 * area <= best.0 {
+        return None;
+    }
+    // Partition in place: bins ≤ best first.
+    let mut mid = 0;
+    for i in 0..n {
+        if bin_of(&items[i]) <= best.1 {
+            items.swap(i, mid);
+            mid += 1;
+        }
+    }
+    if mid == 0 || mid == n {
+        // Unreachable with a positive centre extent (the lowest and highest centres fall in
+        // the first and last bins); halve by count rather than recurse forever.
+        return Some(n / 2);
+    }
+    Some(mid)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit_box(x: f64) -> Bounds3 {
+        Bounds3::new(DVec3::new(x, 0.0, 0.0), DVec3::new(x + 1.0, 1.0, 1.0))
+    }
+
+    #[test]
+    fn visits_exactly_the_crossed_boxes_front_to_back() {
+        // A row of unit boxes along x at x = 0, 2, 4, …, 18.
+        let boxes: Vec<Bounds3> = (0..10).map(|i| unit_box(2.0 * i as f64)).collect();
+        let bvh = Bvh::new(&boxes);
+        let mut visits = 0;
+        // A vertical ray through box 3 only.
+        let ray = Ray::new(DVec3::new(6.5, 0.5, 5.0), DVec3::new(0.0, 0.0, -1.0));
+        let mut seen = Vec::new();
+        bvh.traverse(&ray, 0.0..f64::INFINITY, &mut visits, |i, t| {
+            seen.push(i);
+            Some(t)
+        });
+        assert_eq!(seen, vec![3], "only the box under the ray");
+        // Along +x: all ten, in order; along −x: in reverse order.
+        for (dir, origin) in [(DVec3::X, -1.0), (DVec3::NEG_X, 30.0)] {
+            let ray = Ray::new(DVec3::new(origin, 0.5, 0.5), dir);
+            seen.clear();
+            bvh.traverse(&ray, 0.0..f64::INFINITY, &mut visits, |i, t| {
+                seen.push(i);
+                Some(t)
+            });
+            let mut expected: Vec<u32> = (0..10).collect();
+            if dir.x < 0.0 {
+                expected.reverse();
+            }
+            assert_eq!(seen, expected, "front to back along {dir}");
+        }
+        // Pruning: a hit at t = 4 stops the boxes beyond it.
+        let ray = Ray::new(DVec3::new(-1.0, 0.5, 0.5), DVec3::X);
+        seen.clear();
+        bvh.traverse(&ray, 0.0..f64::INFINITY, &mut visits, |i, _| {
+            seen.push(i);
+            Some(4.0)
+        });
+        assert_eq!(seen, vec![0, 1], "pruned after the hit: {seen:?}");
+        assert!(visits > 0, "visits are counted");
+    }
+
+    #[test]
+    fn equal_boxes_split_to_small_leaves_within_the_depth_limit() {
+        // 1000 copies of one box: no split separates them, yet leaves stay small.
+        let boxes = vec![unit_box(0.0); 1000];
+        let bvh = Bvh::new(&boxes);
+        assert!(bvh.info().depth <= MAX_DEPTH);
+        assert!(
+            bvh.nodes.iter().all(|n| n.count as usize <= MAX_LEAF_ITEMS),
+            "leaves of at most {MAX_LEAF_ITEMS}"
+        );
+        let ray = Ray::new(DVec3::new(0.5, 0.5, 5.0), DVec3::NEG_Z);
+        let mut n = 0;
+        let mut visits = 0;
+        assert!(!bvh.any(&ray, 0.0..f64::INFINITY, &mut visits, |_| {
+            n += 1;
+            false
+        }));
+        assert_eq!(n, 1000, "every copy visited once");
+    }
+
+    #[test]
+    fn nearest_breaks_ties_by_the_lower_index() {
+        // Boxes 0 and 1 sharing the face x = 1; a ray from +x hits box 1 first, box 0 at the
+        // same t (both report the shared face).
+        let boxes = [
+            unit_box(0.0),
+            Bounds3::new(DVec3::new(1.0, 0.0, 0.0), DVec3::ONE),
+        ];
+        let bvh = Bvh::new(&boxes);
+        let ray = Ray::new(DVec3::new(5.0, 0.5, 0.5), DVec3::NEG_X);
+        let mut visits = 0;
+        let hit = bvh.nearest(&ray, 0.0..f64::INFINITY, &mut visits, |i| Some((4.0, i)));
+        assert_eq!(hit.map(|h| h.0), Some(0), "the tie goes to item 0");
+    }
+
+    #[test]
+    fn sah_separates_clusters() {
+        // Two clusters far apart: the root splits between them, so a ray through one cluster
+        // never visits the other's items.
+        let mut boxes: Vec<Bounds3> = (0..8).map(|i| unit_box(0.1 * i as f64)).collect();
+        boxes.extend((0..8).map(|i| unit_box(100.0 + 0.1 * i as f64)));
+        let bvh = Bvh::new(&boxes);
+        let ray = Ray::new(DVec3::new(0.5, 0.5, 5.0), DVec3::NEG_Z);
+        let mut visits = 0;
+        let mut seen = Vec::new();
+        bvh.traverse(&ray, 0.0..f64::INFINITY, &mut visits, |i, t| {
+            seen.push(i);
+            Some(t)
+        });
+        assert!(
+            seen.iter().all(|&i| i < 8),
+            "only the near cluster: {seen:?}"
+        );
+        assert!(!seen.is_empty());
+    }
+}

@@ -1,0 +1,104 @@
+//! Aggregates: the acceleration structure that lets a ray test only the items whose boxes it
+//! crosses. One [`Bvh`] serves the scene's bounded primitives (the integrator) and the
+//! sub-patches of a Bézier mesh (a surface); it knows items only by their boxes, so it sits
+//! below both. See `paper-notes/bvh.md`.
+
+mod bvh;
+
+use std::ops::Range;
+
+use crate::geometry::{Bounds3, Ray};
+
+pub use bvh::{Bvh, BvhInfo, MAX_DEPTH, MAX_LEAF_ITEMS, PRUNE_SLACK_REL, SAH_BINS, TRAVERSAL_COST};
+
+/// A set of items split by whether they have a finite box: the bounded ones in a [`Bvh`],
+/// the unbounded ones (planes, unclipped algebraic surfaces) tested by every ray after it.
+/// Queries answer as a loop over all items in index order would.
+#[derive(Clone, Debug, Default)]
+pub struct Aggregate {
+    bvh: Bvh,
+    /// Item index of each BVH item, ascending (so BVH order ties agree with item order).
+    bounded: Vec<u32>,
+    /// Items without a finite box, ascending.
+    unbounded: Vec<u32>,
+}
+
+impl Aggregate {
+    /// The aggregate of items `0..boxes.len()`, item `i` bounded by `boxes[i]` (`None`, or a
+    /// box with a non-finite corner: unbounded).
+    pub fn new(boxes: &[Option<Bounds3>]) -> Self {
+        let mut bounded = Vec::new();
+        let mut unbounded = Vec::new();
+        let mut bvh_boxes = Vec::new();
+        for (i, b) in boxes.iter().enumerate() {
+            match b {
+                Some(b) if b.min.is_finite() && b.max.is_finite() => {
+                    bounded.push(i as u32);
+                    bvh_boxes.push(*b);
+                }
+                _ => unbounded.push(i as u32),
+            }
+        }
+        Aggregate {
+            bvh: Bvh::new(&bvh_boxes),
+            bounded,
+            unbounded,
+        }
+    }
+
+    /// The hierarchy's size and build time.
+    pub fn bvh_info(&self) -> BvhInfo {
+        self.bvh.info()
+    }
+
+    /// Items tested outside the hierarchy.
+    pub fn unbounded(&self) -> &[u32] {
+        &self.unbounded
+    }
+
+    /// The least `(t, item)` over every item's own nearest hit `hit(item)` in `range` (see
+    /// [`Bvh::nearest`]), with its item; counts BVH nodes visited in `visits`.
+    pub fn nearest<H>(
+        &self,
+        ray: &Ray,
+        range: Range<f64>,
+        visits: &mut u64,
+        mut hit: impl FnMut(u32) -> Option<(f64, H)>,
+    ) -> Option<(u32, f64, H)> {
+        let mut best = self
+            .bvh
+            .nearest(
+                ray,
+                range.clone(),
+                visits,
+                |k| hit(self.bounded[k as usize]),
+            )
+            .map(|(k, t, h)| (self.bounded[k as usize], t, h));
+        for &i in &self.unbounded {
+            if let Some((t, h)) = hit(i) {
+                let better = match &best {
+                    None => t < range.end,
+                    Some((b, bt, _)) => t < *bt || (t == *bt && i < *b),
+                };
+                if better {
+                    best = Some((i, t, h));
+                }
+            }
+        }
+        best
+    }
+
+    /// Whether `blocked(item)` holds for any item (bounded ones only when the ray crosses
+    /// their box in `range`); stops at the first blocker.
+    pub fn any(
+        &self,
+        ray: &Ray,
+        range: Range<f64>,
+        visits: &mut u64,
+        mut blocked: impl FnMut(u32) -> bool,
+    ) -> bool {
+        self.bvh
+            .any(ray, range, visits, |k| blocked(self.bounded[k as usize]))
+            || self.unbounded.iter().any(|&i| blocked(i))
+    }
+}
