@@ -2,6 +2,8 @@
 
 use poly::{BiPoly, Monomial, Poly, Scalar};
 
+use crate::tracked::Tracked;
+
 /// A list of non-zero, monic polynomials generating the ideal `(F1, F2, …)`, as produced by
 /// [`stam_basis`](crate::stam_basis) or [`buchberger`](crate::buchberger).
 ///
@@ -11,17 +13,74 @@ use poly::{BiPoly, Monomial, Poly, Scalar};
 /// Buchberger when a query would otherwise be answered wrongly). The queries are about common
 /// roots over the complex numbers: a ray can miss a patch whose equations have complex common
 /// roots only.
-#[derive(Clone, Debug, PartialEq)]
+///
+/// # `f64` bases and their certificate
+/// Over `f64` the algorithms decide which remainders vanish by a rounding-error bound, and
+/// can return `{1}` for an ideal with common roots (or miss a unit) when the data are
+/// ill-conditioned. A basis they return therefore carries, per element, a bound on its
+/// distance to the ideal of the inputs (the `tracked` module); only
+/// [`proves_no_root_in`](Basis::proves_no_root_in) turns a unit into a proof. The structural
+/// queries ([`contains_unit`](Basis::contains_unit) and the others) are exact statements
+/// about an exact basis and describe the computed polynomials only in `f64`.
+#[derive(Clone, Debug)]
 pub struct Basis<T> {
     elements: Vec<BiPoly<T>>,
+    /// The elements with their ideal-distance bounds (zero for data given to [`Basis::new`]).
+    tracked: Vec<Tracked<T>>,
+}
+
+impl<T: PartialEq> PartialEq for Basis<T> {
+    /// Equal elements (the bounds are bookkeeping, not part of the basis).
+    fn eq(&self, other: &Self) -> bool {
+        self.elements == other.elements
+    }
 }
 
 impl<T: Scalar> Basis<T> {
-    /// Wraps the given polynomials (zero polynomials are dropped, the rest kept in order).
+    /// Wraps the given polynomials (zero polynomials are dropped, the rest kept in order),
+    /// taken as exact data: their error bounds are zero.
     pub fn new(elements: Vec<BiPoly<T>>) -> Self {
+        Basis::from_tracked(elements.into_iter().map(Tracked::new).collect())
+    }
+
+    /// The basis of computed elements, keeping their bounds.
+    pub(crate) fn from_tracked(mut tracked: Vec<Tracked<T>>) -> Self {
+        tracked.retain(|t| !t.is_zero());
         Basis {
-            elements: elements.into_iter().filter(|g| !g.is_zero()).collect(),
+            elements: tracked.iter().map(|t| t.poly.clone()).collect(),
+            tracked,
         }
+    }
+
+    /// Whether the basis proves that `F1 = F2 = 0` has no common root in the box
+    /// `u_range × v_range` (Theorem 1 with the certificate of the solver, see
+    /// [`Method`](crate::Method)): exactly, a non-zero constant element; over `f64`, a
+    /// constant element larger than its certificate bound on the box (its distance to the
+    /// ideal there plus its rounding, doubled). `false` for non-finite ranges.
+    ///
+    /// # Examples
+    /// ```
+    /// use groebner::buchberger;
+    /// use poly::BiPoly;
+    /// // u·v − 1 and u: no common root; Buchberger's f64 basis is {1}, and it is a proof.
+    /// let g = buchberger(&[
+    ///     BiPoly::from_terms([(1.0, 1, 1), (-1.0, 0, 0)]),
+    ///     BiPoly::from_terms([(1.0, 1, 0)]),
+    /// ])?;
+    /// assert!(g.contains_unit() && g.proves_no_root_in([-2.0, 2.0], [-2.0, 2.0]));
+    /// # Ok::<(), groebner::Error>(())
+    /// ```
+    pub fn proves_no_root_in(&self, u_range: [f64; 2], v_range: [f64; 2]) -> bool {
+        let corner = |r: [f64; 2]| r[0].abs().max(r[1].abs());
+        let (u_max, v_max) = (corner(u_range), corner(v_range));
+        if !(u_max.is_finite() && v_max.is_finite()) {
+            return false;
+        }
+        self.tracked.iter().any(|t| {
+            t.poly.is_constant()
+                && (T::EXACT
+                    || t.poly.coeff(0, 0).nearest_f64().abs() > t.certificate_bound(u_max, v_max))
+        })
     }
 
     /// The elements, in the order the algorithm produced them.
@@ -46,7 +105,8 @@ impl<T: Scalar> Basis<T> {
 
     /// Theorem 1 (article §3): `F1 = F2 = 0` has no common root, real or complex, iff the basis
     /// contains a non-zero constant (`1 ∈ G` after making it monic). This is Stam's miss test
-    /// (condition C1).
+    /// (condition C1). Over `f64` this describes the computed basis only: see
+    /// [`proves_no_root_in`](Basis::proves_no_root_in).
     pub fn contains_unit(&self) -> bool {
         self.elements
             .iter()

@@ -46,7 +46,10 @@ pub const BUCHBERGER_MAX_REMAINDERS: usize = 1024;
 /// Exact over `Rat`: the result is the unique reduced Gröbner basis. Over `f64` the crate's
 /// relative zero rule decides which remainders vanish; that is a heuristic, and a system whose
 /// exact basis is `{1}` may come out as a tiny non-constant element or vice versa when the data
-/// are ill-conditioned.
+/// are ill-conditioned (`2u² − 9uv + u − 2v² − 15v/2` and `−u²v + uv² − 4uv − 2u − v³ + 2v² +
+/// 4v − 1` have two real common roots in `[−2, 2]²`, and their `f64` basis is `{1}`). So the
+/// basis carries its error bounds, and a unit is a proof of "no common root" only where
+/// [`Basis::proves_no_root_in`] says so.
 ///
 /// # Complexity
 /// Doubly exponential in the worst case; for two bicubic equations the basis has a handful of
@@ -76,7 +79,7 @@ pub fn buchberger<T: Scalar>(polys: &[BiPoly<T>]) -> Result<Basis<T>, Error> {
         return Err(Error::NonFinite { what: "input" });
     }
     let g = buchberger_tracked(input)?;
-    Ok(Basis::new(reduce_tracked(g)))
+    Ok(Basis::from_tracked(reduce_tracked_keep(g)))
 }
 
 /// Buchberger's loop on tracked polynomials; returns a (non-reduced) Gröbner basis.
@@ -91,7 +94,16 @@ pub fn buchberger<T: Scalar>(polys: &[BiPoly<T>]) -> Result<Basis<T>, Error> {
 /// staircase of a degree-18 lex basis leaves hundreds of pairs, each reducing to zero through
 /// coefficients of several hundred bits.
 pub(crate) fn buchberger_tracked<T: Scalar>(
+    input: Vec<Tracked<T>>,
+) -> Result<Vec<Tracked<T>>, Error> {
+    buchberger_limited(input, BUCHBERGER_MAX_BASIS, BUCHBERGER_MAX_REMAINDERS)
+}
+
+/// [`buchberger_tracked`] with the two work limits as parameters.
+fn buchberger_limited<T: Scalar>(
     mut input: Vec<Tracked<T>>,
+    max_basis: usize,
+    max_remainders: usize,
 ) -> Result<Vec<Tracked<T>>, Error> {
     input.retain(|t| !t.is_zero());
     for t in &mut input {
@@ -125,18 +137,18 @@ pub(crate) fn buchberger_tracked<T: Scalar>(
         if is_unit(&h) {
             return Ok(vec![h]);
         }
-        if active.len() >= BUCHBERGER_MAX_BASIS {
+        if active.len() >= max_basis {
             return Err(Error::LimitExceeded {
                 algorithm: "buchberger",
                 what: "basis elements",
-                limit: BUCHBERGER_MAX_BASIS,
+                limit: max_basis,
             });
         }
-        if all.len() >= BUCHBERGER_MAX_REMAINDERS {
+        if all.len() >= max_remainders {
             return Err(Error::LimitExceeded {
                 algorithm: "buchberger",
                 what: "remainders",
-                limit: BUCHBERGER_MAX_REMAINDERS,
+                limit: max_remainders,
             });
         }
         update(&mut all, &mut active, &mut pairs, h);
@@ -324,6 +336,32 @@ mod tests {
             g.elements(),
             &[qb(&[(1, 0, 1), (-1, 0, 0)]), qb(&[(1, 1, 0), (-1, 0, 0)])],
             "point"
+        );
+    }
+
+    #[test]
+    fn regression_basis_cap_counts_the_reducer_set_not_every_remainder() {
+        // Caught (issue 10, item 4): the cap counted every remainder ever added, so exact
+        // degree-6 pairs whose reduced basis has 2–3 elements hit `LimitExceeded`. On the
+        // article's pair the run adds more elements in total than its basis ever holds: a cap
+        // of 3 on the reducer set passes, the same cap on all remainders does not.
+        let (f1, f2) = article_pair();
+        let input = || vec![Tracked::new(f1.clone()), Tracked::new(f2.clone())];
+        let g = buchberger_limited(input(), 3, BUCHBERGER_MAX_REMAINDERS).unwrap();
+        assert_eq!(
+            reduce_tracked(g),
+            article_reduced_basis(),
+            "the reduced basis"
+        );
+        assert!(
+            matches!(
+                buchberger_limited(input(), BUCHBERGER_MAX_BASIS, 3),
+                Err(Error::LimitExceeded {
+                    what: "remainders",
+                    ..
+                })
+            ),
+            "more than 3 elements were added on the way"
         );
     }
 

@@ -21,11 +21,14 @@
 use std::slice::ChunksExact;
 
 use poly::{
-    BiPoly, NearZeroBuffers, Poly, RootStats, near_double_roots_into, near_zero_components_into,
+    BiPoly, NearZeroBuffers, Poly, Rat, RootStats, near_double_roots_into,
+    near_zero_components_into,
 };
 
 use crate::bicubic::Bicubic;
+use crate::buchberger::buchberger;
 use crate::options::{Root, SolveOptions, SolveStats, Verdict};
+use crate::resultant::sylvester_resultant_v;
 use crate::scalar::SolveScalar;
 
 /// Relative size below which a coefficient of `g(u_r, v)` counts as vanished, `2⁻²⁶ ≈ 1.5e-8`
@@ -143,6 +146,8 @@ pub(crate) struct Buffers<T> {
     v_poly: Vec<T>,
     /// `u`-candidates.
     pub(crate) u_roots: Vec<f64>,
+    /// Certified candidates: the largest half-width of their components.
+    u_radius: f64,
     /// `v`-candidates.
     v_roots: Vec<f64>,
     /// Verified roots, and the merged ones.
@@ -162,6 +167,7 @@ impl<T> Buffers<T> {
             elim_f64: Vec::with_capacity(degree + 1),
             v_poly: Vec::with_capacity(8),
             u_roots: Vec::with_capacity(degree + 1),
+            u_radius: 0.0,
             v_roots: Vec::with_capacity(8),
             roots: Vec::with_capacity(16),
             merged: Vec::with_capacity(16),
@@ -184,6 +190,9 @@ pub(crate) enum Elimination<T> {
         derived: Vec<BiPoly<T>>,
         /// The input equations giving `v` next, by index (0 for `F1`, 1 for `F2`), in order.
         originals: [Option<usize>; 2],
+        /// The `u`-polynomial is a resultant (or a power of a `v`-free equation): its roots
+        /// can all be "at `v = ∞`" ([`no_common_root_at_all`] decides when no root verifies).
+        resultant: bool,
     },
 }
 
@@ -247,6 +256,7 @@ pub(crate) fn eliminate_degenerate<T: SolveScalar>(
         candidates: false,
         derived: Vec::new(),
         originals: [Some(other), None],
+        resultant: true,
     })
 }
 
@@ -273,6 +283,7 @@ pub(crate) fn finish_resultant<T: SolveScalar>(
         candidates: false,
         derived: Vec::new(),
         originals: sources,
+        resultant: true,
     }
 }
 
@@ -343,7 +354,7 @@ pub(crate) fn certify<T>(
         }
         Certifiable::Univariate { e, bound } => {
             let max_width = CERT_WIDTH_REL * (ub[1] - ub[0]).max(x_tol);
-            if !near_zero_components_into(
+            buf.u_radius = near_zero_components_into(
                 e,
                 bound,
                 ub,
@@ -351,14 +362,13 @@ pub(crate) fn certify<T>(
                 max_width,
                 &mut buf.near,
                 &mut buf.u_roots,
-            ) {
-                return None;
-            }
+            )?;
             stats.u_degree = e.len() - 1;
             Some(Elimination::Eliminant {
                 candidates: true,
                 derived: Vec::new(),
                 originals,
+                resultant: false,
             })
         }
     }
@@ -375,13 +385,14 @@ pub(crate) fn find_roots<T: SolveScalar, P: Rows<T>, Q: Rows<f64>>(
     stats: &mut SolveStats,
 ) -> Verdict {
     buf.roots.clear();
-    let (candidates, derived, originals) = match elimination {
+    let (candidates, derived, originals, resultant) = match elimination {
         Elimination::Verdict(v) => return v,
         Elimination::Eliminant {
             candidates,
             derived,
             originals,
-        } => (candidates, derived, originals),
+            resultant,
+        } => (candidates, derived, originals, resultant),
     };
     let (ub, vb) = (widened(opts.u_range, opts), widened(opts.v_range, opts));
     if !candidates {
@@ -409,6 +420,9 @@ pub(crate) fn find_roots<T: SolveScalar, P: Rows<T>, Q: Rows<f64>>(
                 &mut buf.u_roots,
             );
         }
+    }
+    if !candidates {
+        buf.u_radius = 0.0;
     }
     stats.u_roots = buf.u_roots.len();
     // v-candidates are searched a Newton step beyond the box: a u-candidate off by δ moves
@@ -459,22 +473,178 @@ pub(crate) fn find_roots<T: SolveScalar, P: Rows<T>, Q: Rows<f64>>(
         };
         for &g in originals.iter().flatten() {
             if !v_candidates(system[g], &ut, &u_err, v_search, opts.x_tol, buf) {
-                // g(u, ·) ≡ 0. If the other equation vanishes there too, the line u = u_r
-                // is common to both curves (a factor in u alone of F1 and F2).
-                if vanishes_at(system[1 - g], &ut, &u_err) {
-                    buf.roots.clear();
-                    return Verdict::Infinite;
-                }
-                continue;
+                continue; // g(u, ·) ≡ 0
             }
             stats.rejected += verify_candidates(system_f64, u, opts, [ub, vb], buf);
             if buf.roots.len() > before {
                 break;
             }
         }
+        // No root at u. If F1(u, ·) and F2(u, ·) both vanish identically there (to first
+        // order in the candidate's error), the line u = u_r is common to both curves: a
+        // factor in u alone of F1 and F2, whose points Newton cannot polish (the Jacobian
+        // vanishes on it).
+        let Some(u_err) = T::from_f64(u_err_f64 + buf.u_radius) else {
+            continue;
+        };
+        if buf.roots.len() == before && system.iter().all(|g| vanishes_at(*g, &ut, &u_err)) {
+            buf.roots.clear();
+            return Verdict::Infinite;
+        }
     }
     merge_and_sort(&mut buf.roots, &mut buf.merged, opts.x_tol);
+    if resultant && buf.roots.is_empty() && no_common_root_at_all(system) {
+        return Verdict::NoCommonRoot;
+    }
     Verdict::Finite
+}
+
+/// Two univariate `f64` polynomials (lowest power first) whose Sylvester determinant, each
+/// scaled to a largest coefficient of 1, is below this fraction of its Hadamard bound are
+/// taken as possibly sharing a root, `2⁻²⁶ ≈ 1.5e-8` (about `√ε`): a pre-test only (the
+/// decision is exact), so a margin far above the rounding of a 6 × 6 elimination costs only
+/// the rare exact check, while generic pairs pass it by orders of magnitude.
+const SHARED_ROOT_REL: f64 = 1.0 / (1u64 << 26) as f64;
+
+/// Largest Sylvester matrix the `f64` pre-test of [`nearly_share_a_root`] builds on the stack
+/// (two cubics: 6); larger pairs go to the exact test directly.
+const SHARED_ROOT_MAX_SIZE: usize = 8;
+
+/// Whether `a` and `b` may have a common (complex) root: their Sylvester determinant is small
+/// (see [`SHARED_ROOT_REL`]); `true` also when the matrix exceeds [`SHARED_ROOT_MAX_SIZE`].
+fn nearly_share_a_root(a: &[f64], b: &[f64]) -> bool {
+    let trim = |p: &[f64]| -> usize { p.iter().rposition(|&c| c != 0.0).unwrap_or(0) };
+    let (m, n) = (trim(a), trim(b));
+    if m == 0 || n == 0 {
+        return false; // a non-zero constant has no root
+    }
+    let size = m + n;
+    if size > SHARED_ROOT_MAX_SIZE {
+        return true;
+    }
+    let scale = |p: &[f64]| 1.0 / p.iter().fold(0.0f64, |s, c| s.max(c.abs()));
+    let (sa, sb) = (scale(a), scale(b));
+    let mut mat = [0.0f64; SHARED_ROOT_MAX_SIZE * SHARED_ROOT_MAX_SIZE];
+    // Rows 0..n: a shifted (highest power first); rows n..n+m: b shifted.
+    for r in 0..n {
+        for k in 0..=m {
+            mat[r * size + r + k] = a[m - k] * sa;
+        }
+    }
+    for r in 0..m {
+        for k in 0..=n {
+            mat[(n + r) * size + r + k] = b[n - k] * sb;
+        }
+    }
+    let hadamard: f64 = (0..size)
+        .map(|r| {
+            mat[r * size..(r + 1) * size]
+                .iter()
+                .map(|x| x * x)
+                .sum::<f64>()
+                .sqrt()
+        })
+        .product();
+    // Gaussian elimination with partial pivoting.
+    let mut det = 1.0;
+    for col in 0..size {
+        let Some(p) = (col..size).max_by(|&i, &j| {
+            mat[i * size + col]
+                .abs()
+                .total_cmp(&mat[j * size + col].abs())
+        }) else {
+            return true;
+        };
+        let pivot = mat[p * size + col];
+        if pivot == 0.0 {
+            return true;
+        }
+        if p != col {
+            for k in 0..size {
+                mat.swap(p * size + k, col * size + k);
+            }
+        }
+        det *= pivot;
+        for r in col + 1..size {
+            let f = mat[r * size + col] / pivot;
+            for k in col..size {
+                mat[r * size + k] -= f * mat[col * size + k];
+            }
+        }
+    }
+    // NaN (overflowed input) counts as "may share": the exact test decides.
+    det.abs() <= SHARED_ROOT_REL * hadamard || det.is_nan()
+}
+
+/// The row of `v^{Deg_v}`: the leading coefficient in `v`, a polynomial in `u`.
+fn leading_row<T: poly::Scalar>(p: &impl Rows<T>) -> &[T] {
+    p.rows().nth(deg_v(p)).unwrap_or(&[])
+}
+
+/// Resultant methods, when no root verified: whether `F1 = F2 = 0` has no common root at all,
+/// real or complex — the resultant's roots all "at `v = ∞`". Exact, on the exact values of the
+/// inputs: with `g = gcd(lc_v F1, lc_v F2)`, every root of `Res_v` must be a root of `g` (the
+/// resultant stripped of `g`'s factors is constant), and then the common roots all have
+/// `g(u) = 0`, so `1 ∈ (F1, F2, g)` (Buchberger, Theorem 1) decides. In `f64` mode the exact
+/// test runs only when the leading coefficients may share a root ([`nearly_share_a_root`]):
+/// without a common root of theirs every root of the resultant is a finite common root.
+fn no_common_root_at_all<T: SolveScalar, P: Rows<T>>(f: [&P; 2]) -> bool {
+    if !T::EXACT {
+        let to_f64 = |row: &[T], out: &mut [f64; SHARED_ROOT_MAX_SIZE + 1]| -> Option<usize> {
+            (row.len() <= out.len()).then(|| {
+                for (o, c) in out.iter_mut().zip(row) {
+                    *o = c.nearest_f64();
+                }
+                row.len()
+            })
+        };
+        let (mut a, mut b) = (
+            [0.0; SHARED_ROOT_MAX_SIZE + 1],
+            [0.0; SHARED_ROOT_MAX_SIZE + 1],
+        );
+        if let (Some(la), Some(lb)) = (
+            to_f64(leading_row(f[0]), &mut a),
+            to_f64(leading_row(f[1]), &mut b),
+        ) && !nearly_share_a_root(&a[..la], &b[..lb])
+        {
+            return false;
+        }
+    }
+    let exact = |p: &P| -> Option<BiPoly<Rat>> {
+        let stride = p.rows().next().map_or(0, <[T]>::len);
+        let coeffs = p
+            .flat()
+            .iter()
+            .map(SolveScalar::to_rat)
+            .collect::<Option<Vec<_>>>()?;
+        let rows = coeffs.len().checked_div(stride).unwrap_or(0);
+        Some(BiPoly::from_grid(stride, rows, coeffs))
+    };
+    let (Some(f1), Some(f2)) = (exact(f[0]), exact(f[1])) else {
+        return false;
+    };
+    let lc_q = |p: &BiPoly<Rat>| Poly::new(p.rows_iter().nth(p.deg_v()).unwrap_or(&[]).to_vec());
+    let g = lc_q(&f1).gcd(&lc_q(&f2));
+    if g.degree() == 0 {
+        return false;
+    }
+    let Ok(mut rest) = sylvester_resultant_v(&f1, &f2) else {
+        return false;
+    };
+    if rest.is_zero() {
+        return false;
+    }
+    loop {
+        let h = rest.gcd(&g);
+        if h.degree() == 0 {
+            break;
+        }
+        rest = rest.div_rem(&h).map_or(rest, |(q, _)| q);
+    }
+    if rest.degree() > 0 {
+        return false;
+    }
+    buchberger(&[f1, f2, BiPoly::from_poly_u(&g)]).is_ok_and(|b| b.contains_unit())
 }
 
 /// The search range widened by `x_tol` on both sides (a root on a patch edge must not be lost
@@ -510,30 +680,34 @@ fn verify_candidates<T, Q: Rows<f64>>(
     rejected
 }
 
-/// The coefficient of one row of `g` at `ut` (Horner), and whether it vanishes there (see
-/// [`v_candidates`]).
-fn row_at<T: SolveScalar>(row: &[T], ut: &T, u_err: &T) -> (T, bool) {
+/// The coefficient `c` of one row of `g` at `ut` (Horner), the size `s` of its terms and a
+/// bound `ds` on the size of its derivative over `|u| ≤ |ut| + u_err`.
+fn row_at<T: SolveScalar>(row: &[T], ut: &T, u_err: &T) -> (T, T, T) {
     let au_wide = ut.abs() + u_err;
-    // Value, size of the terms, and bound on the derivative's size over the u interval.
     let (mut c, mut s, mut ds) = (T::zero(), T::zero(), T::zero());
     for a in row.iter().rev() {
         c = c * ut + a;
-        if T::EXACT {
-            ds = ds * &au_wide + &s;
-        }
+        ds = ds * &au_wide + &s;
         s = s * &au_wide + a.abs();
     }
-    let vanished = if T::EXACT {
-        c.abs() <= (T::one() + T::one()) * u_err * ds
-    } else {
-        c.abs() <= T::from_f64(VANISH_REL).expect("a small constant") * s
-    };
-    (c, vanished)
+    (c, s, ds)
 }
 
-/// Whether every coefficient of `g(ut, ·)` vanishes ([`v_candidates`]' test).
+/// Whether `|c| ≤ 2·u_err·ds`: the first-order bound on `|c(ut) − c(u_r)|` cannot certify
+/// `c(u_r) ≠ 0` ([`v_candidates`]).
+fn within_first_order<T: SolveScalar>(c: &T, u_err: &T, ds: T) -> bool {
+    c.abs() <= (T::one() + T::one()) * u_err * ds
+}
+
+/// Whether every coefficient of `g(u_r, ·)` may vanish: [`v_candidates`]' test, or (`f64`)
+/// the first-order test, which also holds for coefficients that vanish linearly at a root
+/// near `u = 0` (where the relative test cannot).
 fn vanishes_at<T: SolveScalar>(g: &impl Rows<T>, ut: &T, u_err: &T) -> bool {
-    g.rows().all(|row| row_at(row, ut, u_err).1)
+    let vanish = T::from_f64(VANISH_REL).expect("a small constant");
+    g.rows().all(|row| {
+        let (c, s, ds) = row_at(row, ut, u_err);
+        (!T::EXACT && c.abs() <= vanish.clone() * s) || within_first_order(&c, u_err, ds)
+    })
 }
 
 /// Candidate `v` values at `u` from one source `g`: the real roots of `g(u, ·)` in `vb`, into
@@ -556,9 +730,15 @@ fn v_candidates<T: SolveScalar>(
 ) -> bool {
     buf.v_poly.clear();
     buf.v_roots.clear();
+    let vanish = T::from_f64(VANISH_REL).expect("a small constant");
     let mut significant = false;
     for row in g.rows() {
-        let (c, vanished) = row_at(row, ut, u_err);
+        let (c, s, ds) = row_at(row, ut, u_err);
+        let vanished = if T::EXACT {
+            within_first_order(&c, u_err, ds)
+        } else {
+            c.abs() <= vanish.clone() * s
+        };
         significant |= !vanished;
         buf.v_poly.push(if vanished { T::zero() } else { c });
     }

@@ -14,7 +14,8 @@
 //! * Resultants in `v`: [`sylvester_resultant_v`], [`bezout_resultant_v`].
 //! * Solving in a box: [`solve`] with [`SolveOptions`], giving verified [`Root`]s, a [`Verdict`]
 //!   and per-solve [`SolveStats`].
-//! * The ray / patch equations: [`ray_patch_system`].
+//! * The ray / patch equations: [`ray_patch_system`]; the tracer's per-ray call
+//!   [`solve_ray_patch`] in a reusable [`SolveWorkspace`].
 //!
 //! # Exact and `f64` modes
 //! Every algorithm is generic over [`SolveScalar`]: [`poly::Rat`] (exact, no thresholds) or
@@ -25,6 +26,53 @@
 //! eliminant degree ~6: [`solve`] uses an `f64` basis only where its error bounds certify it
 //! and otherwise falls back to the resultant ([`Method`]), and [`Method::BezoutResultant`] is
 //! the default method.
+//!
+//! # Layers
+//! Modules read top-down; each uses only the ones below it (checked by
+//! `.ci/module_graph.py`). The algebra needs only [`poly::Scalar`]; solving adds
+//! [`SolveScalar`] (the bridge to `poly`'s root finders).
+//!
+//! ```text
+//! solving     solve.rs           solve, solve_ray_patch; the general path's elimination
+//!             per_ray.rs         the fixed-size (bicubic, f64) elimination, SolveWorkspace
+//!             driver.rs          the steps after elimination, one copy for both paths
+//!             options.rs         Method, SolveOptions, Root, Verdict, SolveStats, Solution
+//!             scalar.rs          SolveScalar (f64 | Rat)
+//! ray/patch   ray_patch.rs       F1, F2 of a ray and a patch (article §2)
+//! resultants  resultant.rs       Sylvester, Bézout, division-free determinant
+//!             bezout_bicubic.rs  the Bézout determinant in fixed-size arrays
+//! algebra     stam_grid.rs       Stam's loop on fixed grids (per ray)
+//!             stam_loop.rs       Stam's loop (article §4.2)
+//!             buchberger.rs      Buchberger's algorithm, reduced bases
+//!             reduction.rs       →F, normal forms, S-polynomials, R2
+//!             tracked.rs         polynomials with ideal-distance bounds, the certificate bound
+//!             basis.rs           Basis and Theorems 1–3; bicubic.rs, error.rs
+//! ```
+//!
+//! # Tolerances
+//! Every threshold of the crate in one table (each constant is documented where it is
+//! defined; `paper-notes/groebner.md` §5 has the measurements behind the speed heuristics).
+//! Exact mode (`Rat`) uses none of them but the solve options and the work limits.
+//!
+//! | Name | Bounds | Kind | Why this value |
+//! |---|---|---|---|
+//! | `ZERO_ERR_FACTOR` = 4 (`tracked.rs`) | an `f64` coefficient is zero when `abs(c) ≤ 4·d`, `d` its running error bound | relative to `d` | `d` is first order; 4 covers the second-order terms and drops nothing certified by more than two bits |
+//! | `NOISE_ABORT_REL` = 1e-4 (`tracked.rs`) | a new Stam element whose error bound reaches this fraction of its size ends the `f64` run | relative | speed heuristic measured on the teapot; soundness comes from the certificate |
+//! | `CERT_SAFETY` = 2 (`tracked.rs`) | factor on the certificate bound | relative | covers the neglected second-order terms |
+//! | `CERT_WIDTH_REL` = 1e-6 (`driver.rs`) | widest component of `abs(ê) ≤ Ē` accepted | relative to the `u`-range | its midpoint is then well within Newton's reach |
+//! | `VANISH_REL` = 2⁻²⁶ (`driver.rs`) | a coefficient of `g(u_r, v)` counts as zero | relative to its terms | `u_r` is known to `x_tol`; `√ε` leaves room for `x_tol` up to ~1e-9 |
+//! | `NEAR_DOUBLE_REL` = 2⁻²⁶ (`driver.rs`) | a critical point of the `f64` eliminant is a candidate double root | relative to its terms | far above a double root's rounding; spurious candidates are verified |
+//! | `SHARED_ROOT_REL` = 2⁻²⁶ (`driver.rs`) | pre-test for the leading coefficients in `v` sharing a root | relative to the Hadamard bound | a pre-test only (the decision is exact) |
+//! | `NEWTON_MAX_STEP_REL` = 1e-3, `NEWTON_STEPS` = 4 (`driver.rs`) | largest polish step; polish iterations | relative to the box; count | a larger step means the candidate was not near this root |
+//! | `MERGE_X_TOLS` = 4, `U_ERR_X_TOLS` = 2 (`driver.rs`) | roots merged within `4·x_tol`; a `u`-candidate's error `2·x_tol` | multiples of `x_tol` | refinement to `x_tol` plus the polish's movement |
+//! | `SHARPEN_BITS` = 96, 192, 384 (`driver.rs`) | exact mode: precisions of a narrowed `u`-root | absolute (bits) | `h'` reached 2⁶⁰ on the teapot, `x_tol` ≈ 2⁻³³ |
+//! | `EXTREME_SCALE_EXP` = 64 (`driver.rs`) | `f64` inputs beyond `2^±64` are scaled by a power of two | absolute (exponent) | six-fold products stay in range; scene systems are untouched |
+//! | [`DEFAULT_X_TOL`] = 1e-10 | root positions | absolute (parameter units) | 1e-10 of a patch's `[0, 1]²` |
+//! | [`DEFAULT_F_TOL_REL`] = 2⁻³⁰ | residual accepted at a root | relative to the terms | accepts tangential hits to ~3e-5, rejects extraneous candidates by orders of magnitude |
+//! | `poly::F64_NEGLIGIBLE_REL` (`ray_patch.rs`, `Poly::trim_negligible`) | the first cancellation of `F1`, `F2`; trailing resultant coefficients | relative | `poly`'s own rule |
+//! | [`STAM_MAX_ROUNDS`], [`R2_MAX_STEPS`], [`BUCHBERGER_MAX_BASIS`], [`BUCHBERGER_MAX_REMAINDERS`], [`MAX_MATRIX_SIZE`]; `MAX_ELEMENTS`, `CAP_U` (`stam_grid.rs`) | work and capacity limits | counts | far above what bicubic systems need; they bound every loop |
+//!
+//! Unit round-off is [`poly::UNIT_ROUNDOFF`], `γ(k)` is [`poly::gamma`].
 //!
 //! # Examples
 //! ```
@@ -42,11 +90,8 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-// Layers, top-down (a module uses only the ones below it; `.ci/module_graph.py` checks it):
-//   solving   solve → per_ray → driver → options, scalar
-//   ray/patch ray_patch
-//   resultant resultant → bezout_bicubic
-//   algebra   stam_grid, stam_loop, buchberger → reduction → tracked; basis; bicubic; error
+#![warn(unused_crate_dependencies)]
+
 mod basis;
 mod bezout_bicubic;
 mod bicubic;

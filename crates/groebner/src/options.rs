@@ -31,7 +31,7 @@ pub const DEFAULT_F_TOL_REL: f64 = 1.0 / (1u64 << 30) as f64;
 /// from `F1`, `F2`. Otherwise they solve the Bézout resultant instead
 /// ([`SolveStats::fallback`]). Measured on the teapot (`paper-notes/groebner.md` §5) the
 /// certificate holds on ~7% of the ray/piece systems that pass the tracer's hull test (Stam's
-/// loop per ray, stopped at its first eliminant: `fast.rs`); the result always matches the
+/// loop per ray, stopped at its first eliminant: `per_ray.rs`); the result always matches the
 /// resultant's. The resultants are determinants of matrices of low-degree coefficients and
 /// stay accurate to degree 18. Hence the default, [`Method::BezoutResultant`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -140,7 +140,7 @@ pub struct SolveStats {
     pub fallback: bool,
 }
 
-/// The outcome of [`solve`].
+/// The outcome of [`solve`](crate::solve).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Solution {
     /// Verified roots in the box, sorted by `u` then `v`.

@@ -40,6 +40,9 @@ pub trait SolveScalar: Scalar + sealed::Sealed {
     /// `paper-notes/groebner.md` §5), so the `f64` value of the root is not enough even though
     /// the basis is exact.
     fn sharpen_root(coeffs: &[Self], u: f64, x_tol: f64, bits: u32) -> Option<Self>;
+
+    /// The exact value, as a rational (`None` for a non-finite `f64`).
+    fn to_rat(&self) -> Option<Rat>;
 }
 
 impl SolveScalar for f64 {
@@ -59,6 +62,10 @@ impl SolveScalar for f64 {
 
     fn sharpen_root(_: &[f64], _: f64, _: f64, _: u32) -> Option<f64> {
         None
+    }
+
+    fn to_rat(&self) -> Option<Rat> {
+        Rat::from_f64_exact(*self)
     }
 }
 
@@ -102,5 +109,9 @@ impl SolveScalar for Rat {
 
     fn sharpen_root(coeffs: &[Rat], u: f64, x_tol: f64, bits: u32) -> Option<Rat> {
         Poly::new(coeffs.to_vec()).root_near(u, 2.0 * x_tol, bits)
+    }
+
+    fn to_rat(&self) -> Option<Rat> {
+        Some(self.clone())
     }
 }

@@ -198,6 +198,7 @@ fn eliminate_groebner_exact<T: SolveScalar>(
         candidates: false,
         derived: basis.v_elements().into_iter().cloned().collect(),
         originals: [Some(0), Some(1)],
+        resultant: false,
     })
 }
 

@@ -70,15 +70,11 @@ pub fn stam_basis<T: Scalar>(f1: &BiPoly<T>, f2: &BiPoly<T>) -> Result<Basis<T>,
         .map_err(|_| Error::NonFinite { what: "F1" })?;
     t2.check_finite("stam")
         .map_err(|_| Error::NonFinite { what: "F2" })?;
-    let g = stam_tracked(t1, t2)?;
-    Ok(Basis::new(
-        g.into_iter()
-            .map(|mut t| {
-                t.make_monic();
-                t.poly
-            })
-            .collect(),
-    ))
+    let mut g = stam_tracked(t1, t2)?;
+    for t in &mut g {
+        t.make_monic();
+    }
+    Ok(Basis::from_tracked(g))
 }
 
 /// The loop on tracked polynomials; returns the non-zero elements.

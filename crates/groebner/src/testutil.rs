@@ -2,6 +2,10 @@
 
 use poly::{BiPoly, QBiPoly, Rat};
 
+// `unused_crate_dependencies` hygiene: proptest is a dev-dependency for `tests/systems.rs`
+// only, not for the unit tests.
+use proptest as _;
+
 /// The integer `n` as a rational.
 pub(crate) fn q(n: i64) -> Rat {
     Rat::from_integer(n.into())

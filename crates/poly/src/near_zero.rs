@@ -61,16 +61,17 @@ pub fn real_roots_of_coeffs_into(
 }
 
 /// The midpoints of the components of `Z = {x ∈ range : |e(x)| ≤ bound}`, into `out`
-/// (cleared first); `false` when `bound` is not finite or a component is wider than
-/// `max_width + 2·x_tol` (then `out` is partial and must not be used).
+/// (cleared first), and the largest half-width of a component; `None` when `bound` is not
+/// finite or a component is wider than `max_width + 2·x_tol` (then `out` is partial and must
+/// not be used).
 ///
 /// The components are delimited by the real roots of `e − bound` and `e + bound` in `range`
 /// (certified isolation, each within `x_tol`); between two consecutive cuts `|e| − bound` has
 /// one sign, tested at the midpoint. Midpoints closer than `4·x_tol` are merged.
 ///
 /// # Accuracy
-/// Every point of `Z` lies within `max_width/2 + 2·x_tol` of a returned midpoint when the
-/// function returns `true`: the cuts are the true boundary points of `Z` to within `x_tol`
+/// Every point of `Z` lies within the returned half-width (at most `max_width/2 + x_tol`)
+/// plus `x_tol` of a returned midpoint: the cuts are the true boundary points of `Z` to within `x_tol`
 /// (the midpoint test is a plain Horner evaluation, which can only misjudge a sub-interval
 /// whose `|e|` is within rounding of `bound` everywhere, i.e. a boundary point).
 ///
@@ -79,11 +80,12 @@ pub fn real_roots_of_coeffs_into(
 /// use poly::{near_zero_components_into, NearZeroBuffers};
 /// let e = [-0.25, 0.0, 1.0]; // x² − 1/4: near zero around ±1/2
 /// let (mut buf, mut out) = (NearZeroBuffers::default(), Vec::new());
-/// assert!(near_zero_components_into(&e, 1e-9, [0.0, 1.0], 1e-12, 1e-6, &mut buf, &mut out));
+/// let half_width = near_zero_components_into(&e, 1e-9, [0.0, 1.0], 1e-12, 1e-6, &mut buf, &mut out);
+/// assert!(half_width.is_some_and(|w| w < 1e-8));
 /// assert_eq!(out.len(), 1);
 /// assert!((out[0] - 0.5).abs() < 1e-8);
 /// // A loose bound makes a component wider than allowed:
-/// assert!(!near_zero_components_into(&e, 1e-2, [0.0, 1.0], 1e-12, 1e-6, &mut buf, &mut out));
+/// assert_eq!(near_zero_components_into(&e, 1e-2, [0.0, 1.0], 1e-12, 1e-6, &mut buf, &mut out), None);
 /// ```
 pub fn near_zero_components_into(
     e: &[f64],
@@ -93,10 +95,10 @@ pub fn near_zero_components_into(
     max_width: f64,
     buf: &mut NearZeroBuffers,
     out: &mut Vec<f64>,
-) -> bool {
+) -> Option<f64> {
     out.clear();
     if !bound.is_finite() || e.is_empty() {
-        return false;
+        return None;
     }
     let NearZeroBuffers {
         scratch,
@@ -116,11 +118,13 @@ pub fn near_zero_components_into(
     cuts.dedup();
     let inside = |x: f64| horner_bounded(e, x).0.abs() <= bound;
     let mut start: Option<f64> = None;
-    let close = |a: f64, b: f64, out: &mut Vec<f64>| -> bool {
+    let mut half_width = 0.0f64;
+    let mut close = |a: f64, b: f64, out: &mut Vec<f64>| -> bool {
         if b - a > max_width + 2.0 * x_tol {
             return false;
         }
         out.push(0.5 * (a + b));
+        half_width = half_width.max(0.5 * (b - a));
         true
     };
     for w in cuts.windows(2) {
@@ -129,11 +133,11 @@ pub fn near_zero_components_into(
             start.get_or_insert(a);
         } else if let Some(s) = start.take() {
             if !close(s, a, out) {
-                return false;
+                return None;
             }
         } else if a > range[0] && !close(a, a, out) {
             // An isolated boundary point (Z touches it from no side at this resolution).
-            return false;
+            return None;
         }
     }
     let closed = match start {
@@ -142,7 +146,7 @@ pub fn near_zero_components_into(
         None => true,
     };
     out.dedup_by(|b, a| (*b - *a).abs() <= 4.0 * x_tol);
-    closed
+    closed.then_some(half_width)
 }
 
 /// Adds to `roots` (the real roots in `range` of the polynomial with coefficients `e`, sorted)
@@ -232,21 +236,17 @@ mod tests {
         // e = (x − 0.2)(x − 0.5)(x − 0.8): three narrow components for a small bound.
         let e = [-0.08, 0.66, -1.5, 1.0];
         let (mut buf, mut out) = (NearZeroBuffers::default(), Vec::new());
-        assert!(near_zero_components_into(
-            &e,
-            1e-12,
-            [0.0, 1.0],
-            1e-14,
-            1e-6,
-            &mut buf,
-            &mut out
-        ));
+        assert!(
+            near_zero_components_into(&e, 1e-12, [0.0, 1.0], 1e-14, 1e-6, &mut buf, &mut out)
+                .is_some()
+        );
         assert_eq!(out.len(), 3, "{out:?}");
         for (m, r) in out.iter().zip([0.2, 0.5, 0.8]) {
             assert!((m - r).abs() < 1e-9, "midpoint {m} vs root {r}");
         }
-        assert!(
-            !near_zero_components_into(&e, f64::NAN, [0.0, 1.0], 1e-14, 1e-6, &mut buf, &mut out),
+        assert_eq!(
+            near_zero_components_into(&e, f64::NAN, [0.0, 1.0], 1e-14, 1e-6, &mut buf, &mut out),
+            None,
             "a NaN bound certifies nothing"
         );
     }
@@ -256,15 +256,11 @@ mod tests {
         // |x − 1| ≤ 1e-9 near the right end of [0, 1]: the component is [1 − 1e-9, 1].
         let e = [-1.0, 1.0];
         let (mut buf, mut out) = (NearZeroBuffers::default(), Vec::new());
-        assert!(near_zero_components_into(
-            &e,
-            1e-9,
-            [0.0, 1.0],
-            1e-13,
-            1e-6,
-            &mut buf,
-            &mut out
-        ));
+        let w = near_zero_components_into(&e, 1e-9, [0.0, 1.0], 1e-13, 1e-6, &mut buf, &mut out);
+        assert!(
+            w.is_some_and(|w| (w - 0.5e-9).abs() < 1e-12),
+            "half-width {w:?}"
+        );
         assert_eq!(out.len(), 1);
         assert!((out[0] - (1.0 - 0.5e-9)).abs() < 1e-12, "{out:?}");
     }
