@@ -288,8 +288,8 @@ impl<F: ImplicitFn> Surface for Implicit<F> {
         let (t, p) = self.nearest(ray, t_range, ws, false)?;
         Some(Hit {
             t,
-            p,
             local: p,
+            uv: None,
             tag: 0,
         })
     }
