@@ -66,13 +66,24 @@ pub const HIT_RESIDUAL_REL: f64 = 1e-7;
 /// the same point again.
 pub const HIT_P_ERR_REL: f64 = 4e-7;
 
+// The derivations above, against the solver's defaults that the mesh solves with
+// (`SolveOptions::default()`): the residual bound leaves a factor 100 over groebner's accepted
+// residual, and the error box exceeds both the residual bound and the root tolerance.
+const _: () = assert!(
+    HIT_RESIDUAL_REL >= 100.0 * groebner::DEFAULT_F_TOL_REL,
+    "the 3-D residual bound must leave a factor 100 over the solver's residual"
+);
+const _: () = assert!(
+    HIT_P_ERR_REL > HIT_RESIDUAL_REL && HIT_P_ERR_REL > groebner::DEFAULT_X_TOL,
+    "a hit's error box must exceed the accepted residual and the root tolerance"
+);
+
 /// Default number of sub-patches per patch side (the teapot's 32 patches become 8192 pieces).
 /// Smaller pieces reject more rays by their boxes and hulls before any algebra, and the
 /// algebra of a small piece is cheaper (its eliminant is better conditioned, so `poly` needs
-/// its exact fallback less often); the price is setup time and memory per frame. Measured
-/// with the resultant on `teapot-resultant.scene` at 210² (release, this shared 2-core
-/// machine, noisy): 4 → 16.9–24 s, 8 → 10.3 s, 16 → 5.6 s, 32 → 4.7 s (setup 0.25 s),
-/// 64 → 4.3 s (setup 0.87 s). See `paper-notes/bezier-patches.md` §4.
+/// its exact fallback less often); the price is setup time and memory per frame. 16 is where
+/// the trace time stops falling fast while setup stays small: the measurements per
+/// subdivision are in `paper-notes/bezier-patches.md` §4.
 pub const DEFAULT_SUBDIVISION: usize = 16;
 
 /// Largest subdivision accepted per side (64² pieces per patch).
@@ -87,6 +98,11 @@ const DEGENERATE_NORMAL_REL: f64 = 1e-10;
 /// point moved this far (then 10×, 100×, …) towards the patch centre, which converges to the
 /// limit normal along the collapsed edge.
 const NORMAL_FALLBACK_STEP: f64 = 1e-6;
+
+/// Points tried for the fallback normal: `(u, v)` itself, then the steps
+/// [`NORMAL_FALLBACK_STEP`] · 10^k, k = 0…4, the last 2% of the way to the patch centre —
+/// still next to the degenerate point, where the limit normal is approached.
+const NORMAL_FALLBACK_TRIES: usize = 6;
 
 /// Control points closer than this, relative to the patch size plus its coordinates'
 /// magnitude, count as one point when detecting a collapsed edge (the `.bpt` data repeat the
@@ -611,7 +627,7 @@ impl BezierMesh {
     pub fn normal(&self, index: usize, u: f64, v: f64) -> Option<DVec3> {
         let patch = &self.patches[index];
         let mut step = 0.0;
-        for _ in 0..6 {
+        for _ in 0..NORMAL_FALLBACK_TRIES {
             let (uu, vv) = (u + (0.5 - u) * step * 2.0, v + (0.5 - v) * step * 2.0);
             let (_, su, sv) = patch.eval_with_partials(uu, vv);
             let n = su.cross(sv);
