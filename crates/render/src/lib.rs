@@ -105,7 +105,6 @@ pub use glam;
 
 pub use crate::camera::Camera;
 pub use crate::film::{Film, RenderOutput, RenderSettings, render};
-pub use crate::material::{surface_color, texture_color};
 pub use crate::methods::{PatchMethod, RootMethods};
 pub use crate::options::RenderOptions;
 pub use crate::output::{
