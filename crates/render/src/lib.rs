@@ -21,7 +21,7 @@
 //!     │
 //! surface                    the Surface trait and every shape (implicit path, Bézier mesh)
 //!     │
-//! (aggregate)                the scene's acceleration structure (to come)
+//! aggregate                  the one bounding-volume hierarchy (scene objects, patch pieces)
 //!     │
 //! prepared                   the scene turned into primitives, solvers chosen once
 //!     │
@@ -31,6 +31,29 @@
 //!     │
 //! options, pipeline          RenderOptions and render_scene: prepare, trace, write
 //! ```
+//!
+//! # Tolerances
+//!
+//! Every tolerance of the crate, in one place (each constant's docs give the derivation).
+//! "rel" is relative to the scale named; `u` is [`poly::UNIT_ROUNDOFF`], `γ(n)` Higham's
+//! [`geometry::gamma`].
+//!
+//! | name | bounds | abs/rel | why this value |
+//! |------|--------|---------|----------------|
+//! | [`surface::ROOT_X_TOL_REL`] = 2⁻³³ | root of the ray polynomial, in `t` | rel. to the box diagonal / `\|d\|` | far below a pixel at any distance; refinement is superlinear, so it is cheap |
+//! | [`surface::ENTRY_MARGIN_REL`] = 1e-9 | how far before a bounding-volume entry the root search starts | rel. to `\|t0\| + chord` | far above the slab test's rounding, so a hit on the entry face is kept |
+//! | [`surface::SINGULAR_P_ERR_REL`] = 1e-9 | error box of a hit at a singular point (`∇F ≈ 0`) | rel. to the object's size | heuristic, only where `\|F\|/\|∇F\|` is meaningless (counted) |
+//! | `SPHERE_CLIP_MARGIN` = 1e-9 | widening of a bounding/clipping sphere and its interval | rel. | far above the few roundings, so a touching ray is never clipped |
+//! | `CAUCHY_BOUND_WIDENING_REL` = 8u | widening of Cauchy's root bound for an infinite range | rel. | covers the bound's own rounding (≤ 2u) |
+//! | [`surface::HIT_RESIDUAL_REL`] = 1e-7 | accepted 3-D residual `\|S(u, v) − R(t)\|` of a patch hit | rel. to piece diagonal + `\|O'\|` + `\|t'D\|` | 100 × groebner's `DEFAULT_F_TOL_REL` (asserted at compile time) |
+//! | [`surface::HIT_P_ERR_REL`] = 4e-7 | error box of a patch hit point | rel. to piece diagonal + `\|p\|` | above the residual bound and the solver's `x_tol` (asserted) |
+//! | [`surface::POWER_ZERO_REL`] = 1e-12 | power-basis coefficients snapped to zero | rel. to the net's largest coordinate | round-off residue of degree elevation and subdivision; moves the surface far less than the hit residual |
+//! | `HULL_MARGIN_REL` = 1e-9 | the hull test's separating-plane margin | rel. to piece size + `\|O\|\|D\|` | above the `γ(4)` rounding of the dot products |
+//! | `COLLAPSED_EDGE_REL` = 1e-12 | control points counted as one (collapsed edge) | rel. to patch size + coordinates | the data repeat the apex exactly; covers de Casteljau rounding |
+//! | `DEGENERATE_NORMAL_REL` = 1e-10 | `\|S_u × S_v\|` taken as zero | rel. to `\|S_u\|\|S_v\|` (sine of the angle) | collapsed edges and folds only |
+//! | `NORMAL_FALLBACK_STEP` = 1e-6 | first step of the fallback normal towards the patch centre | abs., in `(u, v)` | converges to the limit normal; `NORMAL_FALLBACK_TRIES` = 6 steps up to 2% |
+//! | `offset_ray_origin`: `4u(\|p\|∞ + d)` | enlargement of a spawned ray's offset | rel. | exceeds the rounding of `p + d·n` (see its docs) |
+//! | error boxes of hit points | `\|p − true hit\|` | abs., from `γ(n)` | residual `(\|F\| + γ(d+3)Σ\|a\|\|x\|^i…)/\|∇F\|` (implicit), pbrt-v4 §6.8 (transforms) |
 //!
 //! # Examples
 //! ```
@@ -54,6 +77,13 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+#![warn(unused_crate_dependencies)]
+
+// The allocation counter is a dev-dependency of the integration test `tests/bezier_no_alloc.rs`
+// only; the unit-test build of the library sees it too.
+#[cfg(test)]
+use allocation_counter as _;
+
 pub mod aggregate;
 mod camera;
 mod film;
@@ -76,7 +106,6 @@ pub use glam;
 
 pub use crate::camera::Camera;
 pub use crate::film::{Film, RenderOutput, RenderSettings, render};
-pub use crate::material::{surface_color, texture_color};
 pub use crate::methods::{PatchMethod, RootMethods};
 pub use crate::options::RenderOptions;
 pub use crate::output::{

@@ -9,7 +9,7 @@ use crate::scene::{Material, Rgb, Texture};
 ///
 /// Stam textures only `TEXTURE` objects; here any illumination level may carry a texture (a
 /// checkered mirror floor), and `TEXTURE` without one is refused by validation.
-pub fn surface_color(material: &Material, textures: &[Texture], uv: Option<DVec2>) -> Rgb {
+pub(crate) fn surface_color(material: &Material, textures: &[Texture], uv: Option<DVec2>) -> Rgb {
     match (material.texture.and_then(|i| textures.get(i)), uv) {
         (Some(tex), Some(uv)) => texture_color(tex, uv),
         _ => material.cs,
@@ -21,7 +21,7 @@ pub fn surface_color(material: &Material, textures: &[Texture], uv: Option<DVec2
 /// Image textures tile the plane as Stam's `ColTexture` does: one copy per `unit` of length,
 /// indexed by `|u|` and `|v|` (so the image is mirrored across the plane's axes, as in his
 /// program). Checkers alternate with period `2·unit`.
-pub fn texture_color(tex: &Texture, uv: DVec2) -> Rgb {
+pub(crate) fn texture_color(tex: &Texture, uv: DVec2) -> Rgb {
     match tex {
         Texture::Image(img) => {
             let (w, h) = (img.width as usize, img.height as usize);

@@ -52,14 +52,14 @@ pub enum PatchMethod {
     /// Kajiya's resultant `Res_v(F1, F2)`, as the determinant of the `3 × 3` Bézout matrix
     /// (`groebner::Method::BezoutResultant`): for a bicubic `F1`, `F2` (both of degree 3 in
     /// `v`) it equals the `6 × 6` Sylvester determinant exactly and costs 12 polynomial
-    /// products instead of 192 (measured on the 210² teapot: 14 µs per ray/piece test instead
-    /// of 38.5 µs, the same image bit for bit).
+    /// products instead of 192, the same image bit for bit (timings in
+    /// `paper-notes/bezier-patches.md`, "What made the resultant fast").
     Resultant,
-    /// [`PatchMethod::Groebner`] over exact rationals: reference renders (slow: seconds per
-    /// ray on a bicubic).
+    /// [`PatchMethod::Groebner`] over exact rationals: reference renders (slow; see
+    /// `paper-notes/bezier-patches.md` §3).
     GroebnerExact,
-    /// [`PatchMethod::Resultant`] over exact rationals: reference renders (slow: about 0.3 s
-    /// per bicubic piece, release build).
+    /// [`PatchMethod::Resultant`] over exact rationals: reference renders (slow; see
+    /// `paper-notes/bezier-patches.md` §3).
     ResultantExact,
 }
 

@@ -223,3 +223,53 @@ fn build_surface(
         ),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::*;
+    use crate::geometry::Ray;
+    use crate::scene::{ControlNet, Object};
+    use crate::workspace::Workspace;
+
+    /// `render --patch-method` reaches the surfaces through `with_methods` (it used to be applied
+    /// by cloning the whole scene in `render_scene`): a Gröbner object prepared with a resultant
+    /// override solves by the resultant, which reports no basis (`basis_size` 0), while without
+    /// the override every solve reports Stam's basis.
+    #[test]
+    fn patch_method_override_reaches_the_mesh() {
+        let saddle = [
+            (-1.0, -1.0, 1.0),
+            (-1.0, 1.0, -1.0),
+            (1.0, -1.0, -1.0),
+            (1.0, 1.0, 1.0),
+        ]
+        .map(|(x, y, z)| DVec3::new(x, y, z));
+        let mut scene = Scene::default();
+        scene.objects.push(Object::new(ShapeKind::BezierPatches {
+            patches: vec![ControlNet::new(1, 1, saddle.to_vec()).unwrap()],
+            method: PatchMethod::Groebner,
+        }));
+        let ray = Ray::new(DVec3::new(0.3, -0.4, 5.0), DVec3::new(0.01, 0.02, -1.0));
+        let basis_free_solves = |patch_method| {
+            let prepared =
+                PreparedScene::with_methods(&scene, RootMethods::default(), patch_method).unwrap();
+            let mut ws = Workspace::new();
+            let hit = prepared.primitives[0]
+                .surface
+                .intersect(&ray, 0.0..f64::INFINITY, &mut ws);
+            assert!(hit.is_some(), "the ray crosses the saddle");
+            let p = &ws.stats.patches;
+            assert!(p.solves > 0, "the algebra ran");
+            (p.basis_size[0], p.solves)
+        };
+        let (without_basis, solves) = basis_free_solves(Some(PatchMethod::Resultant));
+        assert_eq!(without_basis, solves, "every solve by the resultant");
+        let (without_basis, _) = basis_free_solves(None);
+        assert_eq!(
+            without_basis, 0,
+            "the object's own Gröbner method otherwise"
+        );
+    }
+}

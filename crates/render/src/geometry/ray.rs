@@ -2,6 +2,8 @@
 
 use glam::DVec3;
 
+use poly::UNIT_ROUNDOFF;
+
 use super::gamma;
 
 /// A ray `R(t) = origin + t·dir` (Stam eq. 2.1). `dir` need not be unit length: a
@@ -38,15 +40,16 @@ impl Ray {
 ///
 /// # Accuracy
 /// The offset along `n` is `d = |n|·p_err`, the largest extent of the error box along the
-/// normal, enlarged to `d' = d + 2ε(|p|∞ + d)`. Rounding the sum `p + d'n` moves the point along
-/// `n` by at most `(ε/2)·|n|₁·|p + d'n|∞ ≤ (√3/2)·ε(|p|∞ + d')`, less than the enlargement, so
+/// normal, enlarged to `d' = d + 4u(|p|∞ + d)` (`u` = [`UNIT_ROUNDOFF`] = ε/2). Rounding the sum
+/// `p + d'n` moves the point along `n` by at most `u·|n|₁·|p + d'n|∞ ≤ √3·u(|p|∞ + d')`, less
+/// than the enlargement, so
 /// the returned origin lies outside the box of possible true hit points, on `w`'s side of the
 /// tangent plane (pbrt rounds each component away instead; this bound avoids the bit
 /// manipulation). It does not guard against a surface that curves back within that distance;
 /// the error boxes are a few ulps, far below any curvature radius the scenes use.
 pub fn offset_ray_origin(p: DVec3, p_err: DVec3, n: DVec3, w: DVec3) -> DVec3 {
     let d = n.abs().dot(p_err);
-    let d = d + 2.0 * f64::EPSILON * (p.abs().max_element() + d);
+    let d = d + 4.0 * UNIT_ROUNDOFF * (p.abs().max_element() + d);
     if w.dot(n) < 0.0 { p - n * d } else { p + n * d }
 }
 

@@ -138,7 +138,7 @@ pub fn parse_bpt(text: &str) -> Result<Vec<ControlNet>, BptError> {
 ///
 /// # Errors
 /// [`BptError`] with the line of the first problem.
-pub fn parse_control_points(text: &str) -> Result<ControlNet, BptError> {
+pub(crate) fn parse_control_points(text: &str) -> Result<ControlNet, BptError> {
     let mut points = Vec::with_capacity(16);
     let mut last = 1;
     for (line, l) in lines(text) {

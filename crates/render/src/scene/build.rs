@@ -177,8 +177,9 @@ pub fn build(ast: &SceneAst, file: &Path) -> Result<Scene, SceneError> {
         ));
     };
     scene.camera = camera;
-    // Backstop: the model's own checks, reported at the block they concern.
-    scene.validate().map_err(|e| {
+    // Backstop: the model's own checks, reported at the block they concern (each shape was
+    // checked as its block was read).
+    scene.validate_except_shapes().map_err(|e| {
         let span = match &e {
             SceneInvalid::Object { index, .. } => object_spans.get(*index).copied(),
             SceneInvalid::Light { index, .. } => light_spans.get(*index).copied(),

@@ -16,7 +16,7 @@ mod nff;
 mod print;
 mod syntax;
 
-pub use bpt::{BptError, MAX_BPT_PATCHES, parse_bpt, parse_control_points};
+pub use bpt::{BptError, MAX_BPT_PATCHES, parse_bpt};
 pub use control_net::{ControlNet, MAX_PATCH_DEGREE, PatchError};
 pub use model::{
     BoundingVolume, CameraSpec, CheckerTexture, Illumination, ImageTexture, InvalidModel, Light,

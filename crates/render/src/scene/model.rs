@@ -652,9 +652,23 @@ impl Scene {
     /// Checks every invariant the tracer relies on: shapes ([`ShapeKind::validate`]),
     /// texture references, camera, viewport and lights. The error names the object or block.
     pub fn validate(&self) -> Result<(), SceneInvalid> {
+        self.check(true)
+    }
+
+    /// [`Scene::validate`] without the shapes' own checks, for a builder that ran
+    /// [`ShapeKind::validate`] on each shape as it read it (the scene language does, to point
+    /// at the offending key), so that no shape is checked twice.
+    pub fn validate_except_shapes(&self) -> Result<(), SceneInvalid> {
+        self.check(false)
+    }
+
+    /// The checks of [`Scene::validate`], in its order; `shapes` runs [`ShapeKind::validate`].
+    fn check(&self, shapes: bool) -> Result<(), SceneInvalid> {
         for (index, object) in self.objects.iter().enumerate() {
             let at = |e: InvalidModel| SceneInvalid::Object { index, error: e };
-            object.shape.validate().map_err(at)?;
+            if shapes {
+                object.shape.validate().map_err(at)?;
+            }
             if let BoundingVolume::Box { min, max } = object.bounding
                 && !(min.is_finite() && max.is_finite() && min.cmple(max).all())
             {
@@ -888,11 +902,20 @@ mod tests {
             "object 2: Radius must be a positive finite number",
             "{err}"
         );
+        assert_eq!(
+            scene.validate_except_shapes(),
+            Ok(()),
+            "the shape's own check is the one left out"
+        );
         scene.objects.pop();
         scene.objects[0].material.illumination = Illumination::Texture;
         assert!(
             scene.validate().is_err(),
             "TEXTURE without a texture is refused"
+        );
+        assert!(
+            scene.validate_except_shapes().is_err(),
+            "and so it is without the shape checks"
         );
     }
 }

@@ -83,8 +83,8 @@ impl Surface for AaBox {
         };
         Some(Hit {
             t,
-            p,
             local: p,
+            uv: None,
             tag: face,
         })
     }

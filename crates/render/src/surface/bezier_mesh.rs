@@ -66,13 +66,24 @@ pub const HIT_RESIDUAL_REL: f64 = 1e-7;
 /// the same point again.
 pub const HIT_P_ERR_REL: f64 = 4e-7;
 
+// The derivations above, against the solver's defaults that the mesh solves with
+// (`SolveOptions::default()`): the residual bound leaves a factor 100 over groebner's accepted
+// residual, and the error box exceeds both the residual bound and the root tolerance.
+const _: () = assert!(
+    HIT_RESIDUAL_REL >= 100.0 * groebner::DEFAULT_F_TOL_REL,
+    "the 3-D residual bound must leave a factor 100 over the solver's residual"
+);
+const _: () = assert!(
+    HIT_P_ERR_REL > HIT_RESIDUAL_REL && HIT_P_ERR_REL > groebner::DEFAULT_X_TOL,
+    "a hit's error box must exceed the accepted residual and the root tolerance"
+);
+
 /// Default number of sub-patches per patch side (the teapot's 32 patches become 8192 pieces).
 /// Smaller pieces reject more rays by their boxes and hulls before any algebra, and the
 /// algebra of a small piece is cheaper (its eliminant is better conditioned, so `poly` needs
-/// its exact fallback less often); the price is setup time and memory per frame. Measured
-/// with the resultant on `teapot-resultant.scene` at 210² (release, this shared 2-core
-/// machine, noisy): 4 → 16.9–24 s, 8 → 10.3 s, 16 → 5.6 s, 32 → 4.7 s (setup 0.25 s),
-/// 64 → 4.3 s (setup 0.87 s). See `paper-notes/bezier-patches.md` §4.
+/// its exact fallback less often); the price is setup time and memory per frame. 16 is where
+/// the trace time stops falling fast while setup stays small: the measurements per
+/// subdivision are in `paper-notes/bezier-patches.md` §4.
 pub const DEFAULT_SUBDIVISION: usize = 16;
 
 /// Largest subdivision accepted per side (64² pieces per patch).
@@ -88,13 +99,15 @@ const DEGENERATE_NORMAL_REL: f64 = 1e-10;
 /// limit normal along the collapsed edge.
 const NORMAL_FALLBACK_STEP: f64 = 1e-6;
 
+/// Points tried for the fallback normal: `(u, v)` itself, then the steps
+/// [`NORMAL_FALLBACK_STEP`] · 10^k, k = 0…4, the last 2% of the way to the patch centre —
+/// still next to the degenerate point, where the limit normal is approached.
+const NORMAL_FALLBACK_TRIES: usize = 6;
+
 /// Control points closer than this, relative to the patch size plus its coordinates'
 /// magnitude, count as one point when detecting a collapsed edge (the `.bpt` data repeat the
 /// apex exactly; the margin covers de Casteljau rounding in sub-patches).
 const COLLAPSED_EDGE_REL: f64 = 1e-12;
-
-/// Gauss–Newton iterations to recover `(u, v)` of a hit point in shading.
-const PROJECT_STEPS: usize = 24;
 
 /// One piece of a patch, ready for the per-ray algebra.
 #[derive(Clone, Debug)]
@@ -603,49 +616,13 @@ impl BezierMesh {
         best
     }
 
-    /// `(u, v)` in piece `item` of the point `p` (about the mesh's coordinates), by
-    /// Gauss–Newton on `|S(s, r) − p|²` from the piece's centre and corners; the best start wins.
-    fn project(&self, item: usize, p: DVec3) -> (f64, f64) {
-        let piece = &self.pieces[item];
-        let target = p - piece.centre;
-        let mut best = (f64::INFINITY, 0.5, 0.5);
-        for &(s0, r0) in &[(0.5, 0.5), (0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)] {
-            let (mut s, mut r) = (s0, r0);
-            for _ in 0..PROJECT_STEPS {
-                let (q, qs, qr) = piece.eval(s, r);
-                let e = target - q;
-                let (a, b, c) = (qs.dot(qs), qs.dot(qr), qr.dot(qr));
-                let (gs, gr) = (qs.dot(e), qr.dot(e));
-                let det = a * c - b * b;
-                if det.is_nan() || det <= 0.0 || !det.is_finite() {
-                    break;
-                }
-                let ds = (c * gs - b * gr) / det;
-                let dr = (a * gr - b * gs) / det;
-                s = (s + ds).clamp(-0.01, 1.01);
-                r = (r + dr).clamp(-0.01, 1.01);
-                if ds.abs() + dr.abs() < 1e-15 {
-                    break;
-                }
-            }
-            let err = (piece.eval(s, r).0 - target).length();
-            if err < best.0 {
-                best = (err, s, r);
-            }
-            if err <= HIT_RESIDUAL_REL * (piece.diag + target.length()) {
-                break;
-            }
-        }
-        piece.to_parent(best.1, best.2)
-    }
-
     /// The unit normal `∂S/∂u × ∂S/∂v` of patch `index` at `(u, v)`, moved towards the patch
     /// centre at a collapsed edge (a step of `NORMAL_FALLBACK_STEP` = 1e-6, then 10×, …);
     /// `None` if no nearby point has a normal either.
     pub fn normal(&self, index: usize, u: f64, v: f64) -> Option<DVec3> {
         let patch = &self.patches[index];
         let mut step = 0.0;
-        for _ in 0..6 {
+        for _ in 0..NORMAL_FALLBACK_TRIES {
             let (uu, vv) = (u + (0.5 - u) * step * 2.0, v + (0.5 - v) * step * 2.0);
             let (_, su, sv) = patch.eval_with_partials(uu, vv);
             let n = su.cross(sv);
@@ -678,11 +655,10 @@ impl Surface for BezierMesh {
     fn intersect(&self, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> Option<Hit> {
         let (hit, item) =
             self.nearest_hit_in(ray, t_range, &mut ws.stats.patches, &mut ws.solver, false)?;
-        let p = ray.at(hit.t);
         Some(Hit {
             t: hit.t,
-            p,
-            local: p,
+            local: ray.at(hit.t),
+            uv: Some(hit.uv),
             tag: item,
         })
     }
@@ -695,8 +671,9 @@ impl Surface for BezierMesh {
     fn shading(&self, hit: &Hit) -> SurfaceGeometry {
         let p = hit.local;
         let item = (hit.tag as usize).min(self.pieces.len() - 1);
-        let (u, v) = self.project(item, p);
         let piece = &self.pieces[item];
+        // The solver's (u, v) of the parent patch (a `Hit` from `intersect` always has it).
+        let (u, v) = hit.uv.map_or((0.5, 0.5), |uv| (uv.x, uv.y));
         let size = piece.diag + p.abs().max_element();
         SurfaceGeometry {
             p,
@@ -704,5 +681,50 @@ impl Surface for BezierMesh {
             normal: self.normal(piece.parent as usize, u, v),
             uv: Some(DVec2::new(u, v)),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Regression (issue 10): shading threw away the solver's `(u, v)` and recomputed it by
+    /// Gauss–Newton from the hit point. The `Hit` now carries the solver's parameters and
+    /// shading uses exactly them; the hit point is the surface point there.
+    #[test]
+    fn shading_uses_the_solvers_patch_parameters() {
+        // The bilinear saddle z = (2u − 1)(2v − 1) over [−1, 1]².
+        let pts = [
+            (-1.0, -1.0, 1.0),
+            (-1.0, 1.0, -1.0),
+            (1.0, -1.0, -1.0),
+            (1.0, 1.0, 1.0),
+        ]
+        .map(|(x, y, z)| DVec3::new(x, y, z));
+        let net = ControlNet::new(1, 1, pts.to_vec()).unwrap();
+        let mesh = BezierMesh::new(std::slice::from_ref(&net), PatchMethod::Resultant).unwrap();
+        let ray = Ray::new(DVec3::new(0.3, -0.4, 5.0), DVec3::new(0.01, 0.02, -1.0));
+        let (patch_hit, _) = mesh
+            .nearest_hit(&ray, 0.0..f64::INFINITY, &mut PatchStats::default(), false)
+            .expect("the ray crosses the saddle");
+        let hit = mesh
+            .intersect(&ray, 0.0..f64::INFINITY, &mut Workspace::new())
+            .expect("the same hit through the Surface trait");
+        assert_eq!(
+            hit.uv,
+            Some(patch_hit.uv),
+            "the hit carries the solver's (u, v)"
+        );
+        let g = mesh.shading(&hit);
+        assert_eq!(
+            g.uv, hit.uv,
+            "shading reports the solver's (u, v), not a recomputed one"
+        );
+        let on_patch = mesh.patches()[0].eval(patch_hit.uv.x, patch_hit.uv.y);
+        assert!(
+            (on_patch - g.p).length() < 1e-9,
+            "S(u, v) = {on_patch} is the hit point {}",
+            g.p
+        );
     }
 }

@@ -183,8 +183,8 @@ impl Surface for Cone {
         }
         best.map(|(t, p, tag)| Hit {
             t,
-            p,
             local: p,
+            uv: None,
             tag,
         })
     }

@@ -53,14 +53,18 @@ pub use transformed::Transformed;
 /// The result of a nearest-hit query: cheap, no normal yet.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
-    /// Ray parameter of the hit.
+    /// Ray parameter of the hit (the same in every coordinate system: [`Transformed`] does not
+    /// normalise directions).
     pub t: f64,
-    /// The hit point in the coordinates of the ray passed to [`Surface::intersect`].
-    pub p: DVec3,
-    /// The hit point in the innermost surface's own coordinates (equal to `p` for a surface
-    /// that is not [`Transformed`]).
+    /// The hit point in the innermost surface's own coordinates; [`Surface::shading`] maps
+    /// what it derives from it to the query ray's coordinates.
     pub local: DVec3,
-    /// Shape-specific data for [`Surface::shading`] (box face, superquadric octant…).
+    /// The surface parameters the intersector solved for, where it solves for them (a Bézier
+    /// patch's `(u, v)`, exact roots of the ray/patch system), handed to shading so that they
+    /// are not recomputed; `None` for shapes that intersect in `t` alone.
+    pub uv: Option<DVec2>,
+    /// Shape-specific data for [`Surface::shading`] (box face, superquadric octant, patch
+    /// piece…).
     pub tag: u32,
 }
 

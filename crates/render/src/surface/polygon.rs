@@ -115,8 +115,8 @@ impl Surface for Polygon {
         let (t, p) = self.plane.nearest(ray, t_range, ws, false)?;
         self.contains(p).then_some(Hit {
             t,
-            p,
             local: p,
+            uv: None,
             tag: 0,
         })
     }

@@ -157,8 +157,8 @@ impl Surface for Superquadric {
         let (t, p, tag) = self.nearest(ray, t_range, ws, false)?;
         Some(Hit {
             t,
-            p,
             local: p,
+            uv: None,
             tag,
         })
     }

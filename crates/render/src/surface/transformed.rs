@@ -41,11 +41,7 @@ impl<S: Surface> Surface for Transformed<S> {
 
     fn intersect(&self, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> Option<Hit> {
         let r = self.object_from_world.apply_ray(ray);
-        let hit = self.inner.intersect(&r, t_range, ws)?;
-        Some(Hit {
-            p: self.world_from_object.apply_point(hit.p),
-            ..hit
-        })
+        self.inner.intersect(&r, t_range, ws)
     }
 
     fn occluded(&self, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> bool {
@@ -54,11 +50,7 @@ impl<S: Surface> Surface for Transformed<S> {
     }
 
     fn shading(&self, hit: &Hit) -> SurfaceGeometry {
-        let local = Hit {
-            p: hit.local,
-            ..*hit
-        };
-        let g = self.inner.shading(&local);
+        let g = self.inner.shading(hit);
         let (p, p_err) = self.world_from_object.apply_point_with_err(g.p, g.p_err);
         let normal = g
             .normal
