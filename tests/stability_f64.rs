@@ -4,10 +4,10 @@
 //! (docs/stability.md).
 
 use poly::{Poly, RootStats};
-use toolkit_benches::families::{Family, degree_cases};
-use toolkit_benches::methods::Method;
-use toolkit_benches::score::match_roots;
-use toolkit_benches::truth::{abs_error, stored_truth};
+use test_support::families::{Family, degree_cases};
+use test_support::methods::Method;
+use test_support::score::match_roots;
+use test_support::truth::{abs_error, stored_truth};
 
 /// The tolerance asked for (absolute).
 const X_TOL: f64 = 1e-12;

@@ -3,10 +3,10 @@
 //! certified default finds the same roots as exact rational Sturm on the stored polynomial.
 
 use poly::{RefineMethod, RootStats};
-use toolkit_benches::families::{Family, ray_cases};
-use toolkit_benches::methods::Method;
-use toolkit_benches::score::match_roots;
-use toolkit_benches::truth::{abs_error, exact_roots, stored_truth};
+use test_support::families::{Family, ray_cases};
+use test_support::methods::Method;
+use test_support::score::match_roots;
+use test_support::truth::{abs_error, exact_roots, stored_truth};
 
 /// Relative tolerance in `t` (the renderer uses about 2^-33 of the object's size).
 const X_TOL_REL: f64 = 1e-12;

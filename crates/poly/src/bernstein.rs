@@ -24,10 +24,9 @@
 
 use smallvec::SmallVec;
 
-use crate::eval_bound::{
-    ETA, certified_sign, certified_value, certified_value_pair, gamma_ratio_upper,
-};
+use crate::eval_bound::{certified_sign, certified_value, certified_value_pair, gamma_ratio_upper};
 use crate::stats::RootStats;
+use crate::univariate::ETA;
 
 /// Storage for one node's coefficients: a fixed array (no heap allocation; only the first
 /// `n + 1` entries are used) for the degrees a renderer meets, a `Vec` above.

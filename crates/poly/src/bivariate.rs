@@ -11,7 +11,7 @@ use std::fmt;
 use std::ops::{Add, Mul, Neg, Sub};
 
 use crate::scalar::{Rat, Scalar};
-use crate::univariate::Poly;
+use crate::univariate::{Poly, horner};
 
 /// The monomial `u^u · v^v`, ordered by Stam's total-lexicographic order (TLO): compare the
 /// `v`-degree first, then the `u`-degree,
@@ -532,11 +532,6 @@ impl<T: Scalar> BiPoly<T> {
             self.stride = used;
         }
     }
-}
-
-/// Horner's rule on a row of coefficients, lowest power first.
-fn horner<T: Scalar>(row: &[T], x: &T) -> T {
-    row.iter().rev().fold(T::zero(), |acc, c| acc * x + c)
 }
 
 /// A small exponent as a scalar (derivatives).

@@ -12,6 +12,19 @@
 //! and the Bernstein path is certified and fast enough (see `paper-notes/isolation.md`).
 
 use crate::eval_bound::certified_sign;
+use crate::refine::half_tol;
+use crate::root_options::Tolerance;
+use crate::univariate::UNIT_ROUNDOFF;
+
+/// Relative error bound of the computed discriminant `c1² − 4·c0·c2`: three roundings on each
+/// product path and one for the difference, `≤ 4u` relative to `c1² + |4·c0·c2|` (each within
+/// `(1 + u)³ − 1 < 3.01u`, the difference one more `u`), doubled for margin: `8u = 4ε`.
+const DISC_REL_ERR: f64 = 8.0 * UNIT_ROUNDOFF;
+
+/// Absolute allowance in the discriminant's error bound for underflow: every rounding that
+/// lands in the subnormal range errs by at most 2^-1075, and the few of the discriminant
+/// (≤ 4) are covered by `1e-322` ≈ 20 × 2^-1074 with room to spare.
+const DISC_UNDERFLOW_ERR: f64 = 1e-322;
 
 /// The smallest root of `c0 + c1·x` in `(t_min, t_max]`: `Some(Some(r))`, `Some(None)` when
 /// there is certainly none, `None` when undecided. Requires `c1 ≠ 0`, finite input.
@@ -36,21 +49,20 @@ pub(crate) fn linear_smallest(c: &[f64], t_min: f64, t_max: f64) -> Option<Optio
 }
 
 /// The smallest root of `c0 + c1·x + c2·x²` in `(t_min, t_max]`: `Some(Some(r))` with
-/// `|r − root| ≤ x_tol`, `Some(None)` when there is certainly none, `None` when undecided
-/// (near-double root, a root within `x_tol` of an interval end, or `x_tol` below what `f64`
-/// can certify there). Requires `c2 ≠ 0`, finite input.
+/// `|r − root| ≤ max(tol.abs, tol.rel·|root|)`, `Some(None)` when there is certainly none,
+/// `None` when undecided (near-double root, a root within the tolerance of an interval end,
+/// or a tolerance below what `f64` can certify there). Requires `c2 ≠ 0`, finite input.
 pub(crate) fn quadratic_smallest(
     c: &[f64],
     t_min: f64,
     t_max: f64,
-    x_tol: f64,
+    tol: Tolerance,
 ) -> Option<Option<f64>> {
     let (c0, c1, c2) = (c[0], c[1], c[2]);
-    // Δ = c1² − 4·c0·c2 with an error bound: three roundings on each path, relative to the
-    // sum of the magnitudes; the discriminant only decides "no real root" here.
+    // Δ = c1² − 4·c0·c2 with an error bound relative to the sum of the magnitudes; the
+    // discriminant only decides "no real root" here.
     let disc = c1 * c1 - 4.0 * c0 * c2;
-    // The last term covers underflow (at most 2^-1074 per rounding).
-    let disc_err = 4.0 * f64::EPSILON * (c1 * c1 + (4.0 * c0 * c2).abs()) + 1e-322;
+    let disc_err = DISC_REL_ERR * (c1 * c1 + (4.0 * c0 * c2).abs()) + DISC_UNDERFLOW_ERR;
     if !disc.is_finite() {
         return None;
     }
@@ -67,10 +79,10 @@ pub(crate) fn quadratic_smallest(
     if !(r1.is_finite() && r2.is_finite()) || r1 == r2 {
         return None;
     }
-    let delta = (0.5 * x_tol * (1.0 - 4.0 * f64::EPSILON)).min(0.25 * (r2 - r1));
     // Sign of p left of both roots and right of both: that of c2; between them: −c2.
     let s_out: i8 = if c2 > 0.0 { 1 } else { -1 };
     for (k, r) in [r1, r2].into_iter().enumerate() {
+        let delta = half_tol(tol.near(r)).min(0.25 * (r2 - r1));
         let (lo, hi) = (r - delta, r + delta);
         if !(lo < r && r < hi) {
             return None;
@@ -109,14 +121,18 @@ mod tests {
     fn quadratic_without_cancellation() {
         // x² − 1e8·x + 1: roots ≈ 1e-8 and 1e8. The textbook formula loses the small root.
         let c = [1.0, -1e8, 1.0];
-        let r = quadratic_smallest(&c, 0.0, 1.0, 1e-20).unwrap().unwrap();
+        let r = quadratic_smallest(&c, 0.0, 1.0, Tolerance::absolute(1e-20))
+            .unwrap()
+            .unwrap();
         assert!((r - 1e-8).abs() <= 1e-20, "small root {r:e}");
         let naive = (1e8 - (1e16f64 - 4.0).sqrt()) / 2.0;
         assert!(
             (naive - 1e-8).abs() > 1e-10,
             "the naive formula is wrong here: {naive:e}"
         );
-        let r = quadratic_smallest(&c, 1.0, 1e9, 1e-6).unwrap().unwrap();
+        let r = quadratic_smallest(&c, 1.0, 1e9, Tolerance::absolute(1e-6))
+            .unwrap()
+            .unwrap();
         assert!((r - 1e8).abs() <= 1e-6, "large root {r:e}");
     }
 
@@ -124,29 +140,29 @@ mod tests {
     fn quadratic_decides_or_defers() {
         let c = [2.0, 0.0, 1.0]; // x² + 2: no real root
         assert_eq!(
-            quadratic_smallest(&c, -10.0, 10.0, 1e-9),
+            quadratic_smallest(&c, -10.0, 10.0, Tolerance::absolute(1e-9)),
             Some(None),
             "complex roots"
         );
         let c = [1.0, -2.0, 1.0]; // (x − 1)²: double root, undecidable in f64
         assert_eq!(
-            quadratic_smallest(&c, -10.0, 10.0, 1e-9),
+            quadratic_smallest(&c, -10.0, 10.0, Tolerance::absolute(1e-9)),
             None,
             "defers to exact"
         );
         let c = [-1.0, 0.0, 1.0]; // roots ±1; the interval end sits on a root
         assert_eq!(
-            quadratic_smallest(&c, -1.0, 0.5, 1e-9),
+            quadratic_smallest(&c, -1.0, 0.5, Tolerance::absolute(1e-9)),
             None,
             "root at t_min: defers"
         );
         assert_eq!(
-            quadratic_smallest(&c, -0.5, 0.5, 1e-9),
+            quadratic_smallest(&c, -0.5, 0.5, Tolerance::absolute(1e-9)),
             Some(None),
             "none inside"
         );
         assert_eq!(
-            quadratic_smallest(&c, -2.0, 0.5, 1e-9),
+            quadratic_smallest(&c, -2.0, 0.5, Tolerance::absolute(1e-9)),
             Some(Some(-1.0)),
             "−1"
         );

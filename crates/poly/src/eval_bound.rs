@@ -7,20 +7,16 @@
 //! pays for the second when the first cannot decide, which near a simple root shrinks the
 //! band of undecidable points by a factor of about 2^53.
 
-use crate::univariate::gamma;
+use crate::univariate::{Bounded, ETA, Poly, UNIT_ROUNDOFF, gamma};
 
-/// An upper bound on `γ(k)/(1 − γ(k)) = k·u/(1 − 2k·u)` (`u = ε/2`) without a division:
+/// An upper bound on `γ(k)/(1 − γ(k)) = k·u/(1 − 2k·u)` (`u` = [`UNIT_ROUNDOFF`]) without a division:
 /// `1/(1 − x) ≤ 1 + 2x` for `x = 2k·u ≤ 1/2`, so the ratio is at most `k·u·(1 + 4k·u)`.
 /// Valid for `k ≤ 2^50`; the hot loops call it once per evaluation.
 #[inline]
 pub(crate) fn gamma_ratio_upper(k: usize) -> f64 {
-    let ku = k as f64 * (0.5 * f64::EPSILON);
+    let ku = k as f64 * UNIT_ROUNDOFF;
     ku * (1.0 + 4.0 * ku)
 }
-
-/// 2^-1074, the smallest subnormal: the largest absolute error of one rounding that
-/// underflows.
-pub(crate) const ETA: f64 = f64::from_bits(1);
 
 /// `p(x)` by Horner's rule with a rigorous absolute error bound, as in
 /// [`Poly::eval_with_error`](crate::Poly::eval_with_error), plus an underflow allowance that
@@ -42,6 +38,24 @@ pub(crate) fn horner_bounded(c: &[f64], x: f64) -> (f64, f64) {
         z = z * ax + 1.0;
     }
     (v, horner_err(c.len(), s, z))
+}
+
+impl Poly<f64> {
+    /// `p(x)` by Horner's rule with a rigorous bound on the rounding error.
+    ///
+    /// # Accuracy
+    /// Bounds the absolute error of the returned value with respect to the exact value of the
+    /// stored polynomial at the stored `x`: `err = γ(2n)/(1 − γ(2n))·S·(1 + 8ε) + 2η·Σ|x|^i`,
+    /// where `S` is `Σ|cᵢ||x|^i` evaluated in floating point (Higham eq. 5.3; the ratio covers
+    /// the rounding of `S` itself, `(1 + 8ε)` the products forming the bound, and the last
+    /// term underflow, `η = 2^-1074`). Precondition: finite coefficients and `x`; otherwise
+    /// `value` or `err` is NaN or infinite and [`Bounded::certain_sign`] says `None`.
+    /// The cost is one Horner pass carrying three sums, whatever the accuracy. The same
+    /// evaluation certifies every sign in the root finders.
+    pub fn eval_with_error(&self, x: f64) -> Bounded {
+        let (value, err) = horner_bounded(self.coeffs(), x);
+        Bounded { value, err }
+    }
 }
 
 /// The error bound of [`horner_bounded`] from the computed `S = Σ|cᵢ||x|^i` and
@@ -120,7 +134,7 @@ pub(crate) fn comp_horner_bounded(c: &[f64], x: f64) -> (f64, f64) {
     }
     let res = s + comp;
     let g = gamma(2 * n);
-    let u = 0.5 * f64::EPSILON;
+    let u = UNIT_ROUNDOFF;
     let s_up = mag / (1.0 - g);
     let err = (u * res.abs() + g * g * s_up) / (1.0 - u) * (1.0 + 8.0 * f64::EPSILON)
         + 8.0 * ETA * z * (n as f64 + 1.0);

@@ -16,15 +16,16 @@ use crate::bernstein::Bracket;
 use crate::certified::{CertifiedSearch, Found, exact_isolate};
 use crate::closed_form::{linear_smallest, quadratic_smallest};
 use crate::eval_bound::{certified_sign, certified_sign_pair};
+use crate::query::with_scratch_poly;
 use crate::refine::{Refined, bisect_rational_to_f64, refine_bracket, refine_exact_f64};
 use crate::root_error::RootError;
 use crate::root_interval::RootInterval;
-use crate::root_options::{IsolationMethod, RefineMethod, RootOptions};
+use crate::root_options::{IsolationMethod, RefineMethod, RootOptions, Tolerance};
 use crate::scalar::{Rat, rat_from_f64, rat_to_f64};
 use crate::stam::StamSturm;
 use crate::stats::RootStats;
 use crate::sturm::{SturmSequence, check_finite};
-use crate::univariate::{Poly, QPoly};
+use crate::univariate::{Poly, QPoly, ROOT_BOUND_MARGIN, UNIT_ROUNDOFF};
 
 /// Most bisections of a heuristic (floating-point Sturm) isolation before it gives up: the
 /// interval is then narrower than 2^-200 of the original, far below `f64` resolution.
@@ -40,7 +41,7 @@ enum Range {
 
 /// Validates a query: `Ok(false)` when there is nothing to search (empty interval or a
 /// non-zero constant).
-fn validate(p: &Poly<f64>, t_min: f64, t_max: f64, x_tol: f64) -> Result<bool, RootError> {
+fn validate(p: &Poly<f64>, t_min: f64, t_max: f64, opts: &RootOptions) -> Result<bool, RootError> {
     check_finite(p)?;
     if p.is_zero() {
         return Err(RootError::ZeroPolynomial);
@@ -48,15 +49,15 @@ fn validate(p: &Poly<f64>, t_min: f64, t_max: f64, x_tol: f64) -> Result<bool, R
     if t_min.is_nan() || t_max.is_nan() {
         return Err(RootError::NanBound);
     }
-    if x_tol.is_nan() || x_tol < 0.0 || x_tol.is_infinite() {
+    if !opts.tolerance_is_valid() {
         return Err(RootError::InvalidTolerance);
     }
     Ok(p.degree() > 0 && t_min < t_max)
 }
 
 /// Validates a query and narrows `(t_min, t_max]` to the root bound.
-fn prepare(p: &Poly<f64>, t_min: f64, t_max: f64, x_tol: f64) -> Result<Range, RootError> {
-    if !validate(p, t_min, t_max, x_tol)? {
+fn prepare(p: &Poly<f64>, t_min: f64, t_max: f64, opts: &RootOptions) -> Result<Range, RootError> {
+    if !validate(p, t_min, t_max, opts)? {
         return Ok(Range::Empty);
     }
     let (mut lo, mut hi) = (t_min, t_max);
@@ -66,7 +67,7 @@ fn prepare(p: &Poly<f64>, t_min: f64, t_max: f64, x_tol: f64) -> Result<Range, R
     let n = c.len() - 1;
     let inv_lc = 1.0 / c[n].abs();
     let cauchy = c[..n].iter().fold(0.0f64, |m, x| m.max(x.abs() * inv_lc));
-    let cauchy = (1.0 + cauchy) * (1.0 + 8.0 * f64::EPSILON);
+    let cauchy = (1.0 + cauchy) * ROOT_BOUND_MARGIN;
     if !(lo >= -cauchy && hi <= cauchy)
         && let Some(b) = p.root_bound()
     {
@@ -132,13 +133,31 @@ thread_local! {
 /// Runs `f` on `q = p/x^k` (the coefficients of `p` from index `k` on), built in a per-thread
 /// buffer that is reused across queries.
 fn with_quotient<R>(p: &Poly<f64>, k: usize, f: impl FnOnce(&Poly<f64>) -> R) -> R {
-    let mut buf = QUOTIENT.take();
-    buf.clear();
-    buf.extend_from_slice(&p.coeffs()[k..]);
-    let q = Poly::new(buf);
-    let r = f(&q);
-    QUOTIENT.set(q.into_coeffs());
-    r
+    with_scratch_poly(&QUOTIENT, &p.coeffs()[k..], f)
+}
+
+/// Relative widening of Cauchy's bound `1 + max|cᵢ/cₙ|` computed in `f64` (`n` divisions,
+/// one addition, each rounded by at most `u`): `8u = 4ε` covers them with room to spare, so
+/// every root lies strictly inside `(−B, B)`.
+const CAUCHY_ROUNDING_MARGIN: f64 = 1.0 + 8.0 * UNIT_ROUNDOFF;
+
+/// The smallest-root query's range with an infinite end replaced by Cauchy's bound, widened
+/// by [`CAUCHY_ROUNDING_MARGIN`]. Why Cauchy's and not [`Poly::root_bound`]: it takes `n`
+/// divisions where Fujiwara's takes `n` `powf`s, and for the first root the looser end costs
+/// nothing measurable (the ray tracer's unbounded surfaces query `(0, ∞]` on every ray;
+/// `paper-notes/implicit-surfaces.md`). The range is unchanged when both ends are finite or
+/// there is no bound (constants, the zero polynomial).
+fn cauchy_narrowed(p: &Poly<f64>, lo: f64, hi: f64) -> (f64, f64) {
+    if lo.is_finite() && hi.is_finite() {
+        return (lo, hi);
+    }
+    let Some(b) = p.cauchy_bound() else {
+        return (lo, hi);
+    };
+    let b = b * CAUCHY_ROUNDING_MARGIN;
+    let lo = if lo == f64::NEG_INFINITY { -b } else { lo };
+    let hi = if hi == f64::INFINITY { b } else { hi };
+    (lo, hi)
 }
 
 /// For the all-roots queries: validates `(a, b]` and, when [`zero_root_order`] is `k ≥ 1`
@@ -156,7 +175,7 @@ fn zero_root_split(
         // The common case, without validating twice (the caller's path validates).
         return Ok(None);
     }
-    let Range::Search { lo, hi } = prepare(p, a, b, opts.x_tol)? else {
+    let Range::Search { lo, hi } = prepare(p, a, b, opts)? else {
         return Ok(None);
     };
     let k = zero_root_order(p, opts);
@@ -238,8 +257,8 @@ impl Poly<f64> {
     ) -> Result<Option<f64>, RootError> {
         stats.count_query(self.degree());
         let result = self.smallest_root_inner(t_min, t_max, opts, stats);
-        match result {
-            Err(_) => stats.rejected += 1,
+        match &result {
+            Err(e) => stats.count_error(e),
             Ok(Some(_)) => stats.with_root += 1,
             Ok(None) => {}
         }
@@ -253,16 +272,21 @@ impl Poly<f64> {
         opts: &RootOptions,
         stats: &mut RootStats,
     ) -> Result<Option<f64>, RootError> {
-        let (lo, hi) = if self.degree() == 1 && opts.closed_form {
+        let (lo, hi) = if self.degree() == 1
+            && opts.closed_form
+            && opts.isolation == IsolationMethod::Bernstein
+        {
             // The linear closed form decides the root against the range as it is, infinite
             // ends included: a root bound would only cost divisions (the tracer queries a
-            // plane on every ray).
-            if !validate(self, t_min, t_max, opts.x_tol)? {
+            // plane on every ray). Only the certified method has closed forms: the others
+            // need a finite range.
+            if !validate(self, t_min, t_max, opts)? {
                 return Ok(None);
             }
             (t_min, t_max)
         } else {
-            match prepare(self, t_min, t_max, opts.x_tol)? {
+            let (t_min, t_max) = cauchy_narrowed(self, t_min, t_max);
+            match prepare(self, t_min, t_max, opts)? {
                 Range::Empty => return Ok(None),
                 Range::Search { lo, hi } => (lo, hi),
             }
@@ -278,14 +302,15 @@ impl Poly<f64> {
                 })
             });
         }
-        Ok(match opts.isolation {
-            IsolationMethod::Bernstein => certified_smallest(self, lo, hi, opts, stats),
-            IsolationMethod::Exact => exact_smallest(self, lo, hi, opts.x_tol, stats),
+        match opts.isolation {
+            IsolationMethod::Bernstein => Ok(certified_smallest(self, lo, hi, opts, stats)),
+            IsolationMethod::Exact => Ok(exact_smallest(self, lo, hi, opts.tolerance(), stats)),
             IsolationMethod::Sturm => sturm_smallest(self, lo, hi, opts, stats),
-            IsolationMethod::StamSturm => {
-                StamSturm::new(self).and_then(|s| s.smallest_root(lo, hi, opts.x_tol))
-            }
-        })
+            IsolationMethod::StamSturm => match StamSturm::new(self) {
+                Some(s) => s.smallest_root(lo, hi, opts.x_tol),
+                None => Ok(None),
+            },
+        }
     }
 
     /// Isolating intervals of every distinct real root in `(a, b]`, sorted and disjoint, by
@@ -478,12 +503,12 @@ impl Poly<f64> {
             Isolation::Exact(seq, ivs) => {
                 out.extend(
                     ivs.iter()
-                        .map(|iv| refine_exact_interval(&seq, iv, opts.x_tol)),
+                        .map(|iv| refine_exact_interval(&seq, iv, opts.tolerance())),
                 );
             }
             Isolation::Heuristic(ivs) => {
                 for iv in &ivs {
-                    out.push(refine_heuristic(self, iv, opts, stats));
+                    out.push(refine_heuristic(self, iv, opts, stats)?);
                 }
             }
         }
@@ -497,7 +522,7 @@ impl Poly<f64> {
         opts: &RootOptions,
         stats: &mut RootStats,
     ) -> Result<Isolation<'_>, RootError> {
-        let (lo, hi) = match prepare(self, a, b, opts.x_tol)? {
+        let (lo, hi) = match prepare(self, a, b, opts)? {
             // Nothing to search: no roots (any variant with an empty list says so).
             Range::Empty => return Ok(Isolation::Heuristic(Vec::new())),
             Range::Search { lo, hi } => (lo, hi),
@@ -559,7 +584,7 @@ fn certified_smallest(
         // First: the closed forms take infinite ends as they come.
         let decided = match c.len() {
             2 => linear_smallest(c, lo, hi),
-            3 => quadratic_smallest(c, lo, hi, opts.x_tol),
+            3 => quadratic_smallest(c, lo, hi, opts.tolerance()),
             _ => None,
         };
         if let Some(answer) = decided {
@@ -569,10 +594,10 @@ fn certified_smallest(
     }
     if !(lo.is_finite() && hi.is_finite()) {
         stats.exact_fallbacks += 1;
-        return exact_smallest(p, lo, hi, opts.x_tol, stats);
+        return exact_smallest(p, lo, hi, opts.tolerance(), stats);
     }
     let signs = certified_sign_pair(c, lo, hi);
-    if hi - lo <= opts.x_tol && signs.0 * signs.1 < 0 {
+    if hi - lo <= opts.tolerance().on(lo, hi) && signs.0 * signs.1 < 0 {
         // Every point of the interval is within x_tol of any root in it, and opposite end
         // signs prove one: no isolation needed (a shadow ray's "is anything in the way").
         return Some(lo + 0.5 * (hi - lo));
@@ -604,9 +629,9 @@ fn refine_found(
         Found::Exact(_) => None,
     };
     match (bracket, found, search.exact_sequence()) {
-        (Some(b), _, _) => refine_certified(p, b, opts.x_tol, opts.refine, stats),
+        (Some(b), _, _) => refine_certified(p, b, opts.tolerance(), opts.refine, stats),
         (None, Found::Bracket(_), _) => unreachable!("brackets are refined in f64"),
-        (None, Found::Exact(iv), Some(seq)) => refine_exact_interval(seq, iv, opts.x_tol),
+        (None, Found::Exact(iv), Some(seq)) => refine_exact_interval(seq, iv, opts.tolerance()),
         (None, Found::Exact(iv), None) => unreachable!("exact interval {iv:?} without a sequence"),
     }
 }
@@ -615,15 +640,15 @@ fn refine_found(
 fn refine_certified(
     p: &Poly<f64>,
     b: Bracket,
-    x_tol: f64,
+    tol: Tolerance,
     method: RefineMethod,
     stats: &mut RootStats,
 ) -> f64 {
-    match refine_bracket(p.coeffs(), b, x_tol, method, stats) {
+    match refine_bracket(p.coeffs(), b, tol, method, stats) {
         Refined::Root(r) => r,
         Refined::Stuck(b) => {
             stats.refine_fallbacks += 1;
-            refine_exact_f64(p, b, x_tol)
+            refine_exact_f64(p, b, tol)
         }
     }
 }
@@ -633,11 +658,11 @@ fn exact_smallest(
     p: &Poly<f64>,
     lo: f64,
     hi: f64,
-    x_tol: f64,
+    tol: Tolerance,
     stats: &mut RootStats,
 ) -> Option<f64> {
     match exact_isolation(p, lo, hi, true, stats) {
-        Isolation::Exact(seq, ivs) => ivs.first().map(|iv| refine_exact_interval(&seq, iv, x_tol)),
+        Isolation::Exact(seq, ivs) => ivs.first().map(|iv| refine_exact_interval(&seq, iv, tol)),
         _ => None,
     }
 }
@@ -675,24 +700,25 @@ fn exact_isolation(
 /// Refines an exact-isolation interval with exact signs and rounds to `f64`.
 ///
 /// # Accuracy
-/// Within `x_tol` of the root (absolute), or one `f64` spacing when `x_tol` is smaller.
-fn refine_exact_interval(seq: &SturmSequence<Rat>, iv: &RootInterval<f64>, x_tol: f64) -> f64 {
+/// Within `max(tol.abs, tol.rel·|root|)` of the root, or one `f64` spacing when that is
+/// smaller.
+fn refine_exact_interval(seq: &SturmSequence<Rat>, iv: &RootInterval<f64>, tol: Tolerance) -> f64 {
     if iv.is_point() {
         return iv.lo;
     }
     let lo = rat_from_f64(iv.lo).expect("finite");
     let hi = rat_from_f64(iv.hi).expect("finite");
-    refine_rat_to_f64(seq, lo, hi, x_tol)
+    refine_rat_to_f64(seq, lo, hi, tol)
 }
 
 /// Bisection with exact signs of the square-free part, from an open interval `(lo, hi)` with
-/// one root (signs only at `hi` and midpoints), to `f64` accuracy `x_tol`.
-fn refine_rat_to_f64(seq: &SturmSequence<Rat>, lo: Rat, hi: Rat, x_tol: f64) -> f64 {
+/// one root (signs only at `hi` and midpoints), to `f64` accuracy `tol`.
+fn refine_rat_to_f64(seq: &SturmSequence<Rat>, lo: Rat, hi: Rat, tol: Tolerance) -> f64 {
     let s_hi = seq.sign_of_square_free_at(&hi);
     if s_hi == 0 {
         return rat_to_f64(&hi);
     }
-    bisect_rational_to_f64(|x| seq.sign_of_square_free_at(x), lo, hi, s_hi, x_tol)
+    bisect_rational_to_f64(|x| seq.sign_of_square_free_at(x), lo, hi, s_hi, tol)
 }
 
 /// Stam's isolation algorithm (seed §3.5.2) with a floating-point count: keep halving
@@ -733,39 +759,39 @@ fn sturm_smallest(
     hi: f64,
     opts: &RootOptions,
     stats: &mut RootStats,
-) -> Option<f64> {
-    let seq = p.sturm().ok()?;
+) -> Result<Option<f64>, RootError> {
+    let Ok(seq) = p.sturm() else {
+        return Ok(None);
+    };
     let ivs = bisect_isolate(|x, y| seq.count_roots(x, y), lo, hi, true, stats);
-    ivs.first().map(|iv| refine_heuristic(p, iv, opts, stats))
+    ivs.first()
+        .map(|iv| refine_heuristic(p, iv, opts, stats))
+        .transpose()
 }
 
-/// Refines a heuristic interval `(lo, hi]`: with certified opposite end signs as a certified
-/// bracket; otherwise (no sign change seen, e.g. a double root) its midpoint once narrow
-/// enough by plain bisection of the value's magnitude is not possible, so the midpoint.
+/// Refines a heuristic interval `(lo, hi]`. With certified opposite end signs it is a
+/// certified bracket, refined as the certified path refines one (with an exact finish when
+/// `f64` stalls); a certified-zero-free `lo` and an undecidable `hi` give `hi` (the stored
+/// polynomial is within rounding of zero there). Otherwise the counts promised a root that no
+/// sign change confirms (a wrong count, or a root of even multiplicity): the interval is
+/// reported as [`RootError::Unresolved`], never its midpoint as a root (issue 11: roots 1e6
+/// and 1e9 came back as 878 417.97 and 887 500 000).
 fn refine_heuristic(
     p: &Poly<f64>,
     iv: &RootInterval<f64>,
     opts: &RootOptions,
     stats: &mut RootStats,
-) -> f64 {
+) -> Result<f64, RootError> {
     let c = p.coeffs();
     let (lo, hi) = (iv.lo.max(-f64::MAX), iv.hi.min(f64::MAX));
     let (s_lo, s_hi) = (certified_sign(c, lo), certified_sign(c, hi));
     if s_lo != 0 && s_hi == -s_lo {
-        match refine_bracket(
-            c,
-            Bracket::new(lo, hi, s_lo),
-            opts.x_tol,
-            opts.refine,
-            stats,
-        ) {
-            Refined::Root(r) => r,
-            Refined::Stuck(b) => 0.5 * b.lo + 0.5 * b.hi,
-        }
+        let b = Bracket::new(lo, hi, s_lo);
+        Ok(refine_certified(p, b, opts.tolerance(), opts.refine, stats))
     } else if s_hi == 0 && s_lo != 0 {
-        hi
+        Ok(hi)
     } else {
-        0.5 * lo + 0.5 * hi
+        Err(RootError::Unresolved { lo, hi })
     }
 }
 
@@ -906,7 +932,7 @@ fn rat_interval_to_f64(seq: &SturmSequence<Rat>, iv: RootInterval<Rat>, x_tol: f
     if iv.is_point() {
         rat_to_f64(&iv.lo)
     } else {
-        refine_rat_to_f64(seq, iv.lo, iv.hi, x_tol)
+        refine_rat_to_f64(seq, iv.lo, iv.hi, Tolerance::absolute(x_tol))
     }
 }
 

@@ -4,6 +4,40 @@
 //! Coefficients are always stored lowest degree first. Every algorithm runs over exact
 //! rationals ([`Rat`], the oracle) and over `f64`.
 //!
+//! # Layers
+//! `scalar` (the [`Scalar`] trait over `f64` and [`Rat`]) → `univariate` ([`Poly`], the unit
+//! roundoff, Horner's rule, root bounds) → `eval_bound` (evaluation with rigorous error
+//! bounds) → `sturm`, `stam`, `bernstein` (root counting and isolation) → `certified`,
+//! `closed_form`, `refine` → `isolate` (the queries on [`Poly`]) → `query` ([`PolyRef`] and
+//! [`RootQuery`]: the same queries on borrowed coefficients). `bivariate` builds on
+//! `univariate` only.
+//!
+//! # Tolerances
+//! Every tolerance of the crate, in one table. *Relative* means "times the magnitude it is
+//! compared with", *absolute* "in the units of the quantity".
+//!
+//! | name | bounds | kind | why this value |
+//! | --- | --- | --- | --- |
+//! | [`UNIT_ROUNDOFF`] `u = 2^-53` | error of one rounded `f64` operation | relative | round-to-nearest (Higham §2.2); every bound below is a multiple of it |
+//! | `ETA` `η = 2^-1074` (`univariate.rs`) | error of one rounding that underflows | absolute | the smallest subnormal; the absolute term of every error bound |
+//! | [`gamma`]`(k)` | error of `k` chained operations | relative | Higham §3.1 |
+//! | [`RootOptions::x_tol`], [`DEFAULT_X_TOL`] `= 1e-10` | distance of a returned root from the true one | absolute | the caller's; the default suits unit-sized geometry |
+//! | [`RootOptions::rel_tol`] (default 0) | the same, over `|root|`, combined as `max(x_tol, rel_tol·|root|)` | relative | the caller's; `< 1` so that 0 is never an answer for every root |
+//! | [`ROOT_BOUND_MARGIN`] `= 1 + 16u` | widening of Cauchy's and Fujiwara's root bounds | relative | covers the few roundings (division, `powf`) many times over |
+//! | [`ROOT_BOUND_UNDERFLOW_PAD`] `= 4η` | the same, for roundings in the subnormal range | absolute | a relative margin means nothing there |
+//! | `CAUCHY_ROUNDING_MARGIN` `= 1 + 8u` (`isolate.rs`) | Cauchy's bound replacing an infinite end of a smallest-root query | relative | `n` divisions and one addition, each `≤ u` |
+//! | `DISC_REL_ERR` `= 8u`, `DISC_UNDERFLOW_ERR` `= 1e-322` (`closed_form.rs`) | error of the quadratic's discriminant | relative to `c1² + |4c0c2|`; absolute | three roundings per product path, doubled; ≈ 20η for underflow |
+//! | `(1 + 8ε)` factors in `eval_bound.rs`, `bernstein.rs` | the roundings of forming an error bound itself | relative | a handful of operations, bounded generously |
+//! | `half_tol` `= x_tol/2·(1 − 4ε)` (`refine.rs`) | probe distance around a trial point | relative to `x_tol` | keeps `x ± δ` within `x_tol` after rounding |
+//! | [`F64_NEGLIGIBLE_REL`] `= 2^-40` | a coefficient taken as zero in the `f64` algebra (gcd, remainders) | relative to the operands | 12 bits above `ε` for the round-off of a remainder sequence; a heuristic, never used by the certified paths |
+//! | `MIN_MAG_GAIN` `= 1/4` (`certified.rs`) | when a fresh Bernstein run on a stuck piece may restart again | relative to the parent's magnitude bound | a run no tighter than that cannot decide more |
+//!
+//! Loop bounds (every loop has one, so every query terminates): `MAX_RUNS = 16` Bernstein runs
+//! and `MAX_SPLITS = 4000` subdivisions per query, `MAX_DEPTH = 52` (a relative width of
+//! `2^-52` is one rounding step), `MAX_ITERATIONS = 2200` refinement steps (≈ 2100 halvings
+//! take the widest `f64` interval to adjacent numbers), `MAX_HEURISTIC_BISECTIONS = 200` and
+//! Stam's `MAX_ISOLATION_STEPS = 200`, `MAX_REFINE_STEPS = 2200`.
+//!
 //! # Examples
 //! ```
 //! use poly::Poly;
@@ -13,6 +47,10 @@
 //! assert_eq!(p.derivative().degree(), 2);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+
+// Normal dependencies only: a test build also links the dev-dependencies, which the unit
+// tests need not all use.
+#![cfg_attr(not(test), warn(unused_crate_dependencies))]
 
 mod bernstein;
 mod bivariate;
@@ -24,6 +62,7 @@ mod int_poly;
 mod isolate;
 mod near_zero;
 mod ops;
+mod query;
 mod refine;
 mod root_error;
 mod root_interval;
@@ -32,6 +71,7 @@ mod scalar;
 mod stam;
 mod stats;
 mod sturm;
+#[cfg(any(test, feature = "testutil"))]
 pub mod testutil;
 mod univariate;
 
@@ -39,11 +79,14 @@ pub use crate::bivariate::{BiPoly, Monomial, QBiPoly};
 pub use crate::near_zero::{
     NearZeroBuffers, near_double_roots_into, near_zero_components_into, real_roots_of_coeffs_into,
 };
+pub use crate::query::{PolyRef, RootQuery};
 pub use crate::root_error::RootError;
 pub use crate::root_interval::RootInterval;
-pub use crate::root_options::{IsolationMethod, RefineMethod, RootOptions};
+pub use crate::root_options::{DEFAULT_X_TOL, IsolationMethod, RefineMethod, RootOptions};
 pub use crate::scalar::{F64_NEGLIGIBLE_REL, Rat, Scalar, rat_from_f64, rat_to_f64};
 pub use crate::stam::StamSturm;
 pub use crate::stats::{RootStats, STATS_DEGREES};
 pub use crate::sturm::SturmSequence;
-pub use crate::univariate::{Bounded, Poly, QPoly, UNIT_ROUNDOFF, gamma};
+pub use crate::univariate::{
+    Bounded, Poly, QPoly, ROOT_BOUND_MARGIN, ROOT_BOUND_UNDERFLOW_PAD, UNIT_ROUNDOFF, gamma,
+};

@@ -13,11 +13,11 @@ use crate::eval_bound::{
     certified_sign, certified_value, horner_bounded, horner_derivative_and_bound,
 };
 use crate::int_poly::IntPoly;
-use crate::root_options::RefineMethod;
+use crate::root_options::{RefineMethod, Tolerance};
 use crate::scalar::{Rat, rat_from_f64, rat_to_f64};
 use crate::stats::RootStats;
 use crate::sturm::SturmSequence;
-use crate::univariate::Poly;
+use crate::univariate::{Poly, horner};
 
 /// Most iterations of any `f64` refinement loop. Bisection needs at most about 2100 halvings
 /// to go from the widest `f64` interval to adjacent numbers; the faster methods fall back to
@@ -34,12 +34,12 @@ pub(crate) enum Refined {
     Stuck(Bracket),
 }
 
-/// True when the bracket already meets the tolerance: its true width is at most `x_tol`, or
-/// no `f64` lies strictly between the ends.
+/// True when the bracket already meets the tolerance: its true width is at most
+/// `x_tol = tol.on(lo, hi)`, or no `f64` lies strictly between the ends.
 #[inline]
-fn narrow_enough(lo: f64, hi: f64, x_tol: f64) -> bool {
+fn narrow_enough(lo: f64, hi: f64, tol: Tolerance) -> bool {
     // fl(hi − lo) ≤ x_tol·(1 − ε) implies hi − lo ≤ x_tol exactly (one rounding, relative u).
-    hi - lo <= x_tol * (1.0 - f64::EPSILON) || hi <= lo.next_up()
+    hi - lo <= tol.on(lo, hi) * (1.0 - f64::EPSILON) || hi <= lo.next_up()
 }
 
 /// A point strictly inside `(lo, hi)` (requires that one exists).
@@ -49,29 +49,30 @@ fn midpoint(lo: f64, hi: f64) -> f64 {
     if m > lo && m < hi { m } else { lo.next_up() }
 }
 
-/// Refines a certified bracket to width `x_tol` with the chosen method.
+/// Refines a certified bracket to width `x_tol = tol.on(lo, hi)` (re-evaluated as the bracket
+/// shrinks, so a relative tolerance follows the root) with the chosen method.
 ///
 /// # Accuracy
-/// On `Root(r)`: `|r − root| ≤ x_tol`, or `r` and the root are within one `f64` spacing when
+/// On `Root(r)`: `|r − root| ≤ max(tol.abs, tol.rel·|root|)`, or `r` and the root are within one `f64` spacing when
 /// `x_tol` is below it. Precondition: `b` holds exactly one distinct root, of odd multiplicity,
 /// with `sign p(lo) = s_lo = −sign p(hi)` certified. Cost grows like `log2(width/x_tol)`
 /// evaluations for bisection, roughly its logarithm for Illinois and Newton on simple roots.
 pub(crate) fn refine_bracket(
     p: &[f64],
     b: Bracket,
-    x_tol: f64,
+    tol: Tolerance,
     method: RefineMethod,
     stats: &mut RootStats,
 ) -> Refined {
     match method {
-        RefineMethod::Bisection => bisection(p, b, x_tol, stats),
-        RefineMethod::Illinois => illinois(p, b, x_tol, stats),
-        RefineMethod::NewtonBisection => newton(p, b, x_tol, stats),
+        RefineMethod::Bisection => bisection(p, b, tol, stats),
+        RefineMethod::Illinois => illinois(p, b, tol, stats),
+        RefineMethod::NewtonBisection => newton(p, b, tol, stats),
     }
 }
 
 /// Stam's bisection (seed §3.5.3) with certified signs.
-fn bisection(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined {
+fn bisection(p: &[f64], b: Bracket, tol: Tolerance, stats: &mut RootStats) -> Refined {
     let Bracket {
         mut lo,
         mut hi,
@@ -80,12 +81,12 @@ fn bisection(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refine
     } = b;
     let err = bracket_error_bound(p, lo, hi);
     for _ in 0..MAX_ITERATIONS {
-        if narrow_enough(lo, hi, x_tol) {
+        if narrow_enough(lo, hi, tol) {
             return Refined::Root(midpoint_or_lo(lo, hi));
         }
         let m = midpoint(lo, hi);
         stats.refine_evals += 1;
-        let (_, s) = sign_with(p, m, horner(p, m), err);
+        let (_, s) = sign_with(p, m, horner(p, &m), err);
         match s {
             0 => return Refined::Stuck(Bracket::new(lo, hi, s_lo)),
             s if s == s_lo => lo = m,
@@ -131,14 +132,14 @@ fn probe_or_stuck(
 }
 
 /// Half the tolerance, slightly reduced so that `x ± δ` rounded stays within `x_tol` of `x`.
-fn half_tol(x_tol: f64) -> f64 {
+pub(crate) fn half_tol(x_tol: f64) -> f64 {
     0.5 * x_tol * (1.0 - 4.0 * f64::EPSILON)
 }
 
 /// Illinois regula falsi, safeguarded: the trial point is kept `δ = x_tol/2` away from the
 /// ends (so the far end closes in), and a bisection step replaces it whenever three steps have
 /// not halved the bracket.
-fn illinois(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined {
+fn illinois(p: &[f64], b: Bracket, tol: Tolerance, stats: &mut RootStats) -> Refined {
     let Bracket {
         mut lo,
         mut hi,
@@ -147,16 +148,16 @@ fn illinois(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined
         f_hi,
         ..
     } = b;
-    let mut f_lo = if f_lo.is_nan() { horner(p, lo) } else { f_lo };
-    let mut f_hi = if f_hi.is_nan() { horner(p, hi) } else { f_hi };
+    let mut f_lo = if f_lo.is_nan() { horner(p, &lo) } else { f_lo };
+    let mut f_hi = if f_hi.is_nan() { horner(p, &hi) } else { f_hi };
     let err = bracket_error_bound(p, lo, hi);
-    let delta = half_tol(x_tol);
     let mut kept = 0i8; // +1: lo moved last, −1: hi moved last
     let mut width_before = hi - lo;
     for it in 0..MAX_ITERATIONS {
-        if narrow_enough(lo, hi, x_tol) {
+        if narrow_enough(lo, hi, tol) {
             return Refined::Root(midpoint_or_lo(lo, hi));
         }
+        let delta = half_tol(tol.on(lo, hi));
         let mut x = if it % 3 == 2 && hi - lo > 0.5 * width_before {
             midpoint(lo, hi)
         } else {
@@ -177,7 +178,7 @@ fn illinois(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined
             x = midpoint(lo, hi);
         }
         stats.refine_evals += 1;
-        let (fx, s) = sign_with(p, x, horner(p, x), err);
+        let (fx, s) = sign_with(p, x, horner(p, &x), err);
         if s == 0 {
             return probe_or_stuck(p, Bracket::new(lo, hi, s_lo), x, delta, stats);
         }
@@ -204,7 +205,7 @@ fn illinois(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined
 /// `rtsafe`): a step that leaves the bracket, or is not less than half the step before the
 /// last, is replaced by bisection; steps shorter than `δ = x_tol/2` are lengthened to `δ` so
 /// the far end of the bracket closes in.
-fn newton(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined {
+fn newton(p: &[f64], b: Bracket, tol: Tolerance, stats: &mut RootStats) -> Refined {
     let Bracket {
         mut lo,
         mut hi,
@@ -213,7 +214,6 @@ fn newton(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined {
         f_hi,
         guess,
     } = b;
-    let delta = half_tol(x_tol);
     // Start from the isolator's guess (the control polygon's zero), else from the secant
     // point when both end values are known: either is usually much closer than the midpoint.
     let secant = lo - f_lo * ((hi - lo) / (f_hi - f_lo));
@@ -230,10 +230,11 @@ fn newton(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined {
     let (f0, df0, err) = horner_derivative_and_bound(p, x, lo.abs().max(hi.abs()));
     let mut first = Some((f0, df0));
     for _ in 0..MAX_ITERATIONS {
-        if narrow_enough(lo, hi, x_tol) {
+        if narrow_enough(lo, hi, tol) {
             return Refined::Root(midpoint_or_lo(lo, hi));
         }
         stats.refine_evals += 1;
+        let delta = half_tol(tol.on(lo, hi));
         let (fx, dfx) = first.take().unwrap_or_else(|| horner_with_derivative(p, x));
         let (fx, s) = sign_with(p, x, fx, err);
         if s == 0 {
@@ -244,7 +245,7 @@ fn newton(p: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Refined {
         } else {
             hi = x;
         }
-        if narrow_enough(lo, hi, x_tol) {
+        if narrow_enough(lo, hi, tol) {
             return Refined::Root(midpoint_or_lo(lo, hi));
         }
         let newton_step = fx / dfx;
@@ -293,12 +294,6 @@ fn sign_with(c: &[f64], x: f64, fx: f64, err: f64) -> (f64, i8) {
     }
 }
 
-/// `p(x)` by Horner's rule (a value for the secant, not a sign).
-#[inline]
-fn horner(c: &[f64], x: f64) -> f64 {
-    c.iter().rev().fold(0.0, |v, &ci| v * x + ci)
-}
-
 /// `p(x)` and `p'(x)` by Horner's rule.
 #[inline]
 fn horner_with_derivative(c: &[f64], x: f64) -> (f64, f64) {
@@ -314,14 +309,14 @@ fn horner_with_derivative(c: &[f64], x: f64) -> (f64, f64) {
 /// Finishes a bracket with exact signs: bisection on rationals of the stored polynomial.
 ///
 /// # Accuracy
-/// Returns `r` with `|r − root| ≤ x_tol`, or within one `f64` spacing of the root when
-/// `x_tol` is below it. Precondition as for [`refine_bracket`]. Cost: one exact evaluation
-/// per bit gained.
-pub(crate) fn refine_exact_f64(p: &Poly<f64>, b: Bracket, x_tol: f64) -> f64 {
+/// Returns `r` with `|r − root| ≤ max(tol.abs, tol.rel·|root|)`, or within one `f64` spacing
+/// of the root when that is below it. Precondition as for [`refine_bracket`]. Cost: one exact
+/// evaluation per bit gained.
+pub(crate) fn refine_exact_f64(p: &Poly<f64>, b: Bracket, tol: Tolerance) -> f64 {
     let q = IntPoly::from_qpoly(&p.to_rat().expect("finite coefficients were checked"));
     let lo = rat_from_f64(b.lo).expect("finite");
     let hi = rat_from_f64(b.hi).expect("finite");
-    bisect_rational_to_f64(|x| q.sign_at(x), lo, hi, -b.s_lo, x_tol)
+    bisect_rational_to_f64(|x| q.sign_at(x), lo, hi, -b.s_lo, tol)
 }
 
 /// Bisection on rationals of an open interval `(lo, hi)` holding exactly one root, across
@@ -329,8 +324,8 @@ pub(crate) fn refine_exact_f64(p: &Poly<f64>, b: Bracket, x_tol: f64) -> f64 {
 /// and at midpoints.
 ///
 /// # Accuracy
-/// Stops when the width is at most `x_tol` and returns the midpoint rounded to `f64`
-/// (`|r − root| ≤ x_tol/2 + ½ulp`). If the interval first shrinks within one `f64` spacing,
+/// Stops when the width is at most `x_tol = tol.on(lo, hi)` (on the ends rounded to `f64`)
+/// and returns the midpoint rounded to `f64` (`|r − root| ≤ x_tol/2 + ½ulp`). If the interval first shrinks within one `f64` spacing,
 /// returns the root *correctly rounded* (the sign at the rounding boundary decides), so
 /// exactly representable roots come back exactly. Cost: one exact evaluation per bit.
 pub(crate) fn bisect_rational_to_f64(
@@ -338,16 +333,23 @@ pub(crate) fn bisect_rational_to_f64(
     mut lo: Rat,
     mut hi: Rat,
     s_hi: i8,
-    x_tol: f64,
+    tol: Tolerance,
 ) -> f64 {
-    let tol = rat_from_f64(x_tol).expect("tolerance was checked");
+    let abs = rat_from_f64(tol.abs).expect("tolerance was checked");
     let two = Rat::from_integer(2.into());
     loop {
         let mid = (&lo + &hi) / &two;
-        if &hi - &lo <= tol {
+        let (flo, fhi) = (rat_to_f64(&lo), rat_to_f64(&hi));
+        // A relative tolerance on the rounded ends: `on` rounds down by more than the
+        // rounding of the ends (relative u), so the bound stays below rel·|root|.
+        let narrow = if tol.rel == 0.0 {
+            &hi - &lo <= abs
+        } else {
+            &hi - &lo <= rat_from_f64(tol.on(flo, fhi)).expect("finite tolerance")
+        };
+        if narrow {
             return rat_to_f64(&mid);
         }
-        let (flo, fhi) = (rat_to_f64(&lo), rat_to_f64(&hi));
         if flo == fhi {
             // Every number in (lo, hi) rounds to this double.
             return flo;
@@ -431,7 +433,13 @@ mod tests {
         ] {
             for x_tol in [1e-3, 1e-9, 1e-13, 1e-15, 0.0] {
                 let mut stats = RootStats::default();
-                let r = match refine_bracket(p.coeffs(), b, x_tol, method, &mut stats) {
+                let r = match refine_bracket(
+                    p.coeffs(),
+                    b,
+                    Tolerance::absolute(x_tol),
+                    method,
+                    &mut stats,
+                ) {
                     Refined::Root(r) => r,
                     Refined::Stuck(s) => {
                         // Only below the f64 noise floor of x² − 2 near √2 (about 1e-15).
@@ -440,7 +448,7 @@ mod tests {
                             s.lo < 2f64.sqrt() && 2f64.sqrt() <= s.hi,
                             "root kept: {s:?}"
                         );
-                        refine_exact_f64(&p, s, x_tol)
+                        refine_exact_f64(&p, s, Tolerance::absolute(x_tol))
                     }
                 };
                 let err = (r - 2f64.sqrt()).abs();
@@ -458,7 +466,7 @@ mod tests {
         let (p, b) = sqrt2_bracket();
         let count = |m| {
             let mut s = RootStats::default();
-            refine_bracket(p.coeffs(), b, 1e-14, m, &mut s);
+            refine_bracket(p.coeffs(), b, Tolerance::absolute(1e-14), m, &mut s);
             s.refine_evals
         };
         let bis = count(RefineMethod::Bisection);
@@ -486,12 +494,18 @@ mod tests {
         let p = Poly::new(c);
         let b = Bracket::new(0.5, 1.5, -1);
         let mut stats = RootStats::default();
-        let stuck = refine_bracket(p.coeffs(), b, 1e-12, RefineMethod::Bisection, &mut stats);
+        let stuck = refine_bracket(
+            p.coeffs(),
+            b,
+            Tolerance::absolute(1e-12),
+            RefineMethod::Bisection,
+            &mut stats,
+        );
         assert!(
             matches!(stuck, Refined::Stuck(_)),
             "f64 cannot certify signs near 1: {stuck:?}"
         );
-        let r = refine_exact_f64(&p, b, 1e-12);
+        let r = refine_exact_f64(&p, b, Tolerance::absolute(1e-12));
         assert!(
             (r - (1.0 + 2f64.powi(-10))).abs() <= 1e-12,
             "exact refinement: {r}"

@@ -6,8 +6,9 @@ use std::fmt;
 ///
 /// Root finders never panic on bad input and never return a wrong count: a query whose answer
 /// is not a finite set of numbers (the zero polynomial), or whose input is not a set of real
-/// numbers (NaN, infinite coefficients, NaN bounds), gets one of these instead.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// numbers (NaN, infinite coefficients, NaN bounds), gets one of these instead; a heuristic
+/// method that cannot stand by its answer says so ([`RootError::Unresolved`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum RootError {
     /// A coefficient is NaN or infinite; `index` is its power of `x`.
@@ -19,8 +20,19 @@ pub enum RootError {
     ZeroPolynomial,
     /// An interval bound is NaN (infinite bounds are accepted where documented).
     NanBound,
-    /// A tolerance is NaN, negative or infinite.
+    /// A tolerance is NaN, negative or infinite, or a relative tolerance is 1 or more.
     InvalidTolerance,
+    /// A heuristic method ([`IsolationMethod::Sturm`](crate::IsolationMethod::Sturm),
+    /// [`IsolationMethod::StamSturm`](crate::IsolationMethod::StamSturm)) counted a root in
+    /// `(lo, hi]` but no certified sign change confirms it, so it cannot narrow the interval
+    /// (a wrong floating-point count, or a root of even multiplicity). The certified methods
+    /// never return this.
+    Unresolved {
+        /// Lower end of the interval the counts gave.
+        lo: f64,
+        /// Upper end.
+        hi: f64,
+    },
 }
 
 impl fmt::Display for RootError {
@@ -37,8 +49,15 @@ impl fmt::Display for RootError {
             }
             RootError::NanBound => write!(f, "an interval bound is NaN"),
             RootError::InvalidTolerance => {
-                write!(f, "tolerance must be a finite non-negative number")
+                write!(
+                    f,
+                    "tolerance must be a finite non-negative number (a relative one below 1)"
+                )
             }
+            RootError::Unresolved { lo, hi } => write!(
+                f,
+                "a heuristic method counted a root in ({lo}, {hi}] that no sign change confirms"
+            ),
         }
     }
 }
@@ -56,6 +75,7 @@ mod tests {
             RootError::ZeroPolynomial,
             RootError::NanBound,
             RootError::InvalidTolerance,
+            RootError::Unresolved { lo: 1.0, hi: 2.0 },
         ];
         for e in all {
             let s = e.to_string();

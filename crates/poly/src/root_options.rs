@@ -63,6 +63,13 @@ pub enum RefineMethod {
 
 /// The options of a root query: tolerance and methods.
 ///
+/// # Accuracy
+/// A root `ρ` is returned as `r` with `|r − ρ| ≤ max(x_tol, rel_tol·|ρ|)` (the mixed form:
+/// absolute near 0, relative away from it), or within one `f64` spacing of `ρ` when that is
+/// larger. With `rel_tol = 0` (the default) the tolerance is absolute; with `x_tol = 0` and
+/// `rel_tol > 0` it is purely relative. For the certified methods this holds for every root
+/// of the stored polynomial; the Sturm methods are heuristics.
+///
 /// # Examples
 /// ```
 /// use poly::{IsolationMethod, Poly, RefineMethod, RootOptions, RootStats};
@@ -80,6 +87,11 @@ pub struct RootOptions {
     /// and non-negative ([`RootError::InvalidTolerance`](crate::RootError) otherwise). Zero
     /// asks for the best `f64` answer (within one unit in the last place of the root).
     pub x_tol: f64,
+    /// Bound on `|returned − true root| / |true root|` (relative), combined with `x_tol` as
+    /// `max(x_tol, rel_tol·|root|)` (see `# Accuracy`); must be finite with
+    /// `0 ≤ rel_tol < 1` ([`RootError::InvalidTolerance`](crate::RootError) otherwise: from 1
+    /// on, 0 would be an answer for every root). Default 0: absolute tolerance only.
+    pub rel_tol: f64,
     /// How roots are isolated.
     pub isolation: IsolationMethod,
     /// How an isolated root is refined.
@@ -94,6 +106,7 @@ impl RootOptions {
     pub fn new(x_tol: f64) -> Self {
         RootOptions {
             x_tol,
+            rel_tol: 0.0,
             isolation: IsolationMethod::default(),
             refine: RefineMethod::default(),
             closed_form: true,
@@ -101,9 +114,162 @@ impl RootOptions {
     }
 }
 
+impl RootOptions {
+    /// The default methods with the mixed tolerance `max(x_tol, rel_tol·|root|)`.
+    ///
+    /// # Examples
+    /// ```
+    /// use poly::{Poly, RootOptions};
+    /// // Roots 1e-3 and 1e9: twelve significant digits of each, whatever its size.
+    /// let p = Poly::<f64>::from_roots(&[1e-3, 1e9]);
+    /// let r = p.roots(0.0, 1e10, &RootOptions::relative(0.0, 1e-12)).all()?;
+    /// assert!((r[0] - 1e-3).abs() <= 1e-15 && (r[1] - 1e9).abs() <= 1e-3);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn relative(x_tol: f64, rel_tol: f64) -> Self {
+        RootOptions {
+            rel_tol,
+            ..RootOptions::new(x_tol)
+        }
+    }
+
+    /// True when both tolerances are valid (see the fields).
+    pub(crate) fn tolerance_is_valid(&self) -> bool {
+        let abs_ok = self.x_tol.is_finite() && self.x_tol >= 0.0;
+        abs_ok && self.rel_tol.is_finite() && (0.0..1.0).contains(&self.rel_tol)
+    }
+
+    /// The tolerance as the refinement uses it.
+    pub(crate) fn tolerance(&self) -> Tolerance {
+        Tolerance {
+            abs: self.x_tol,
+            rel: self.rel_tol,
+        }
+    }
+}
+
+/// The mixed tolerance `max(abs, rel·|root|)` of [`RootOptions`], for refinement.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Tolerance {
+    /// Absolute part (`x_tol`).
+    pub(crate) abs: f64,
+    /// Relative part (`rel_tol`, in `[0, 1)`).
+    pub(crate) rel: f64,
+}
+
+impl Tolerance {
+    /// An absolute tolerance only.
+    pub(crate) fn absolute(abs: f64) -> Self {
+        Tolerance { abs, rel: 0.0 }
+    }
+
+    /// An absolute tolerance valid for every root in the bracket `(lo, hi)`: `abs`, or
+    /// `rel·min(|lo|, |hi|)` rounded down when larger and the bracket does not contain 0 (then
+    /// every root `ρ` in it has `|ρ| ≥ min(|lo|, |hi|)`).
+    #[inline]
+    pub(crate) fn on(&self, lo: f64, hi: f64) -> f64 {
+        if self.rel == 0.0 || (lo < 0.0 && hi > 0.0) {
+            return self.abs;
+        }
+        // One rounding of the product, relative u ≤ ε: (1 − ε) makes it a lower bound.
+        let r = self.rel * lo.abs().min(hi.abs()) * (1.0 - f64::EPSILON);
+        self.abs.max(r)
+    }
+
+    /// An absolute tolerance `t` such that a value within `t/2` of `x` of a root `ρ` (a
+    /// closed-form root certified in `[x − t/2, x + t/2]`) meets `max(abs, rel·|ρ|)`:
+    /// `abs`, or `rel·|x|/2` when larger. Why that suffices: `|ρ − x| ≤ rel·|x|/4` gives
+    /// `|ρ| ≥ ¾|x|` for `rel < 1`, so `rel·|x|/4 < rel·|ρ|`.
+    #[inline]
+    pub(crate) fn near(&self, x: f64) -> f64 {
+        if self.rel == 0.0 {
+            return self.abs;
+        }
+        self.abs.max(0.5 * self.rel * x.abs())
+    }
+}
+
+/// The root tolerance of [`RootOptions::default`] (absolute): `1e-10`, ten digits of a root of
+/// unit size, far below what the renderer's geometry resolves and cheap for the refinement.
+pub const DEFAULT_X_TOL: f64 = 1e-10;
+
 impl Default for RootOptions {
-    /// The default methods with `x_tol = 1e-10`.
+    /// The default methods with `x_tol =` [`DEFAULT_X_TOL`].
     fn default() -> Self {
-        RootOptions::new(1e-10)
+        RootOptions::new(DEFAULT_X_TOL)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Poly, RootError, RootStats};
+
+    #[test]
+    fn relative_tolerance_is_met_and_used() {
+        // Roots of very different sizes: an absolute x_tol cannot suit all of them.
+        let roots = [-2e7, 1e-3, 1.0, 3e5, 1e9];
+        let p = Poly::<f64>::from_roots(&roots);
+        let rel = 1e-6;
+        for isolation in [IsolationMethod::Bernstein, IsolationMethod::Exact] {
+            for refine in [
+                RefineMethod::Bisection,
+                RefineMethod::Illinois,
+                RefineMethod::NewtonBisection,
+            ] {
+                let base = RootOptions {
+                    isolation,
+                    refine,
+                    ..RootOptions::new(0.0)
+                };
+                let relative = RootOptions {
+                    rel_tol: rel,
+                    ..base
+                };
+                let (mut s_rel, mut s_full) = (RootStats::default(), RootStats::default());
+                let got = p
+                    .real_roots_with(-1e10, 1e10, &relative, &mut s_rel)
+                    .unwrap();
+                let full = p.real_roots_with(-1e10, 1e10, &base, &mut s_full).unwrap();
+                assert_eq!(got.len(), roots.len(), "{isolation:?} {refine:?}: {got:?}");
+                for (g, t) in got.iter().zip(&full) {
+                    assert!(
+                        (g - t).abs() <= rel * t.abs(),
+                        "{isolation:?} {refine:?}: {g:e} vs {t:e}"
+                    );
+                }
+                if isolation == IsolationMethod::Bernstein {
+                    assert!(
+                        s_rel.refine_evals < s_full.refine_evals,
+                        "{refine:?}: the relative tolerance stops refinement earlier ({} vs {})",
+                        s_rel.refine_evals,
+                        s_full.refine_evals
+                    );
+                }
+                let first = p
+                    .try_smallest_root(0.0, 1e10, &relative, &mut s_rel)
+                    .unwrap();
+                assert!(
+                    first.is_some_and(|r| (r - 1e-3).abs() <= rel * 1e-3),
+                    "{isolation:?} {refine:?}: {first:?}"
+                );
+            }
+        }
+        // Degree 2: the closed form honours it too.
+        let q = Poly::<f64>::from_roots(&[3e8, 7e8]);
+        let r = q
+            .roots(0.0, 1e9, &RootOptions::relative(0.0, 1e-9))
+            .smallest();
+        assert!(
+            r.unwrap().is_some_and(|r| (r - 3e8).abs() <= 0.3),
+            "quadratic"
+        );
+        for bad in [1.0, -1e-3, f64::NAN, f64::INFINITY] {
+            assert_eq!(
+                p.roots(0.0, 1.0, &RootOptions::relative(0.0, bad)).all(),
+                Err(RootError::InvalidTolerance),
+                "rel_tol {bad}"
+            );
+        }
     }
 }

@@ -8,11 +8,24 @@
 //! crate's low → high order at the boundary, and every loop has an iteration cap (his
 //! `while (n1 − n2 != 1)` never ends when rounding makes the counts inconsistent).
 //! See `paper-notes/sturm.md` for what each step computes.
+//!
+//! Two departures, because a baseline may be inaccurate but not absurd (issue 13): a zero
+//! member value is skipped in the sign count, as eq. 3.21 says (his code let it break the
+//! chain, which lost the root of `x² − 1` on `(0, 10]`: `V₁(0) = 0`); and where his search
+//! would return a point that no sign change supports (inconsistent counts, the isolation cap,
+//! a bisection that never saw `P` change sign) the query reports
+//! [`RootError::Unresolved`] instead.
 
+use crate::root_error::RootError;
 use crate::univariate::Poly;
 
-/// Most bisections in [`StamSturm::smallest_root`]'s isolation loop (the original has none).
+/// Most bisections in [`StamSturm::smallest_root`]'s isolation loop (the original has none):
+/// 200 halvings take any `f64` interval below the spacing of its numbers.
 const MAX_ISOLATION_STEPS: u32 = 200;
+
+/// Most bisections in [`StamSturm::smallest_root`]'s refinement loop: about 2100 halvings go
+/// from the widest `f64` interval to adjacent numbers.
+const MAX_REFINE_STEPS: u32 = 2200;
 
 /// Stam's Sturm sequence: member `k` stored highest power first, as in his `STURM_SERIE`.
 #[derive(Clone, Debug, PartialEq)]
@@ -92,16 +105,20 @@ impl StamSturm {
         self.members[i].iter().fold(0.0, |v, &c| v * x + c)
     }
 
-    /// `W(x)`: the number of `k` with `V_k(x)·V_{k+1}(x) < 0`. Unlike eq. 3.21 a zero value is
-    /// not skipped: it breaks the chain, as in the original.
+    /// `W(x)`: the number of sign changes `V_k(x)·V_j(x) < 0` between consecutive non-zero
+    /// member values, zeros skipped as in eq. 3.21 (the original let a zero break the chain,
+    /// see the module docs).
     ///
     /// # Accuracy
     /// None promised: plain `f64` products of rounded values.
     pub fn sign_changes_at(&self, x: f64) -> usize {
-        let mut f = self.value(0, x);
+        let mut f = 0.0;
         let mut nb = 0;
-        for i in 1..self.members.len() {
+        for i in 0..self.members.len() {
             let g = self.value(i, x);
+            if g == 0.0 {
+                continue;
+            }
             if f * g < 0.0 {
                 nb += 1;
             }
@@ -124,20 +141,31 @@ impl StamSturm {
     /// is at most `precision`, and return the right end `t2`, as the original does.
     ///
     /// # Accuracy
-    /// None promised (heuristic counts and uncertified signs); `None` when the counts say no
-    /// root, and also when the isolation loop hits its cap.
-    pub fn smallest_root(&self, t1: f64, t2: f64, precision: f64) -> Option<f64> {
+    /// None promised (heuristic counts and uncertified signs); `Ok(None)` when the counts say
+    /// no root.
+    ///
+    /// # Errors
+    /// [`RootError::Unresolved`] with the interval the counts gave when the counts become
+    /// inconsistent, the isolation loop hits its cap, or `P` never changed sign in the
+    /// isolated interval (no value is returned that nothing supports).
+    pub fn smallest_root(
+        &self,
+        t1: f64,
+        t2: f64,
+        precision: f64,
+    ) -> Result<Option<f64>, RootError> {
         let (mut t1, mut t2) = (t1, t2);
         let mut n1 = self.sign_changes_at(t1);
         let mut n2 = self.sign_changes_at(t2);
         if n1 <= n2 {
-            return None;
+            return Ok(None);
         }
+        let unresolved = |lo, hi| Err(RootError::Unresolved { lo, hi });
         let mut steps = 0;
         while n1 - n2 != 1 {
             steps += 1;
             if steps > MAX_ISOLATION_STEPS {
-                return None;
+                return unresolved(t1, t2);
             }
             let m = 0.5 * (t1 + t2);
             let n = self.sign_changes_at(m);
@@ -149,11 +177,12 @@ impl StamSturm {
                 n2 = n;
             }
             if n1 <= n2 {
-                return None;
+                return unresolved(t1, t2);
             }
         }
+        let (a, b) = (t1, t2);
         let mut guard = 0;
-        while t2 - t1 > precision && guard < 2200 {
+        while t2 - t1 > precision && guard < MAX_REFINE_STEPS {
             guard += 1;
             let m = 0.5 * (t1 + t2);
             if m <= t1 || m >= t2 {
@@ -165,7 +194,12 @@ impl StamSturm {
                 t1 = m;
             }
         }
-        Some(t2)
+        let (f1, f2) = (self.value(0, t1), self.value(0, t2));
+        if f2 == 0.0 || f1 * f2 < 0.0 {
+            Ok(Some(t2))
+        } else {
+            unresolved(a, b)
+        }
     }
 }
 
@@ -179,13 +213,13 @@ mod tests {
         let s = StamSturm::new(&p).unwrap();
         assert_eq!(s.count_roots(0.0, 5.0), 4, "all four roots");
         assert_eq!(s.count_roots(1.0, 3.0), 2, "1.7 and 2.2");
-        let r = s.smallest_root(1.0, 5.0, 1e-12).unwrap();
+        let r = s.smallest_root(1.0, 5.0, 1e-12).unwrap().unwrap();
         assert!(
             (r - 1.7).abs() <= 1e-11,
             "smallest root after 1 is 1.7: {r}"
         );
         assert!(
-            s.smallest_root(5.0, 9.0, 1e-9).is_none(),
+            s.smallest_root(5.0, 9.0, 1e-9) == Ok(None),
             "no root beyond 4.1"
         );
         assert!(StamSturm::new(&Poly::new(vec![3.0])).is_none(), "constant");

@@ -2,6 +2,8 @@
 
 use std::ops::AddAssign;
 
+use crate::root_error::RootError;
+
 /// Number of per-degree buckets in [`RootStats::by_degree`]; the last bucket collects every
 /// degree at or above `STATS_DEGREES - 1`.
 pub const STATS_DEGREES: usize = 25;
@@ -32,6 +34,9 @@ pub struct RootStats {
     pub by_degree: [u64; STATS_DEGREES],
     /// Queries refused: non-finite coefficients, zero polynomial, NaN bounds or tolerance.
     pub rejected: u64,
+    /// Queries a heuristic method could not answer ([`RootError::Unresolved`]); always 0
+    /// for the certified methods.
+    pub unresolved: u64,
     /// Queries that returned at least one root.
     pub with_root: u64,
     /// Queries answered by a certified closed form (degree 1 or 2).
@@ -57,6 +62,7 @@ impl RootStats {
             *a += b;
         }
         self.rejected += other.rejected;
+        self.unresolved += other.unresolved;
         self.with_root += other.with_root;
         self.closed_form += other.closed_form;
         self.exact_fallbacks += other.exact_fallbacks;
@@ -80,17 +86,26 @@ impl RootStats {
         self.by_degree[degree.min(STATS_DEGREES - 1)] += 1;
     }
 
+    /// Records a query that ended in `e`: unresolved by a heuristic, or refused.
+    pub(crate) fn count_error(&mut self, e: &RootError) {
+        match e {
+            RootError::Unresolved { .. } => self.unresolved += 1,
+            _ => self.rejected += 1,
+        }
+    }
+
     /// Runs one all-roots query of a polynomial of degree `degree` and records it: counted,
-    /// refused, or with at least one root. The query returns how many roots it found.
-    pub(crate) fn record_all<E>(
+    /// refused or unresolved, or with at least one root. The query returns how many roots it
+    /// found.
+    pub(crate) fn record_all(
         &mut self,
         degree: usize,
-        query: impl FnOnce(&mut RootStats) -> Result<usize, E>,
-    ) -> Result<usize, E> {
+        query: impl FnOnce(&mut RootStats) -> Result<usize, RootError>,
+    ) -> Result<usize, RootError> {
         self.count_query(degree);
         let result = query(self);
         match &result {
-            Err(_) => self.rejected += 1,
+            Err(e) => self.count_error(e),
             Ok(found) if *found > 0 => self.with_root += 1,
             Ok(_) => {}
         }

@@ -28,15 +28,6 @@ pub struct Poly<T> {
 pub type QPoly = Poly<Rat>;
 
 impl<T> Poly<T> {
-    /// Builds a polynomial from coefficients that already satisfy the invariant (no trailing
-    /// zero coefficient), skipping the trim that [`Poly::new`] does.
-    ///
-    /// The caller promises the last coefficient is non-zero; breaking that promise makes
-    /// [`degree`](Poly::degree) and [`leading_coeff`](Poly::leading_coeff) wrong, not unsafe.
-    pub fn new_raw(coeffs: Vec<T>) -> Self {
-        Poly { coeffs }
-    }
-
     /// The coefficients, lowest degree first; empty for the zero polynomial.
     pub fn coeffs(&self) -> &[T] {
         &self.coeffs
@@ -75,6 +66,17 @@ impl<T: Scalar> Poly<T> {
             coeffs.pop();
         }
         Poly { coeffs }
+    }
+
+    /// Builds a polynomial from coefficients that should already satisfy the invariant (no
+    /// trailing zero coefficient), for callers that know they do.
+    ///
+    /// It trims trailing zeros all the same, as [`Poly::new`] does: when the promise holds
+    /// that is one comparison, and a broken promise used to leave a zero leading coefficient
+    /// that made later checked calls (root queries, exact Sturm sequences, `make_monic`)
+    /// divide by zero inside `num-rational` (issue 13).
+    pub fn new_raw(coeffs: Vec<T>) -> Self {
+        Self::new(coeffs)
     }
 
     /// The zero polynomial.
@@ -123,10 +125,7 @@ impl<T: Scalar> Poly<T> {
     /// `|computed − p(x)| ≤ γ(2n)·Σ|cᵢ||x|^i` with `γ(k) = kε/(1−kε)`; use
     /// [`Poly::<f64>::eval_with_error`] to get that bound alongside the value.
     pub fn eval(&self, x: &T) -> T {
-        self.coeffs
-            .iter()
-            .rev()
-            .fold(T::zero(), |acc, c| acc * x + c)
+        horner(&self.coeffs, x)
     }
 
     /// The derivative `p'`.
@@ -326,6 +325,13 @@ impl<T: Scalar> Poly<T> {
     }
 }
 
+/// Horner's rule on coefficients stored lowest power first: the one plain evaluation of the
+/// crate (error bounds: `eval_bound.rs`).
+#[inline]
+pub(crate) fn horner<T: Scalar>(c: &[T], x: &T) -> T {
+    c.iter().rev().fold(T::zero(), |acc, ci| acc * x + ci)
+}
+
 /// Sign changes in a sequence, zeros skipped.
 pub(crate) fn sign_variations<T: Signed>(seq: &[T]) -> usize {
     let mut last: Option<bool> = None;
@@ -356,6 +362,10 @@ fn trim_relative<T: Scalar>(mut p: Poly<T>, scale: &T) -> Poly<T> {
 /// Algorithms*, §2.2). The one home of this constant for every crate of the workspace.
 pub const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0;
 
+/// `η = 2^-1074`, the smallest positive subnormal `f64`: the largest absolute error of one
+/// rounding that underflows (Higham §2.1), the absolute term of every error bound here.
+pub(crate) const ETA: f64 = f64::from_bits(1);
+
 /// The unit-roundoff multiple `γ(k) = k·u / (1 − k·u)`, `u` = [`UNIT_ROUNDOFF`] (Higham,
 /// *Accuracy and Stability of Numerical Algorithms*, §3.1): the relative error bound of `k`
 /// chained floating-point operations.
@@ -363,6 +373,16 @@ pub fn gamma(k: usize) -> f64 {
     let ku = k as f64 * UNIT_ROUNDOFF;
     ku / (1.0 - ku)
 }
+
+/// Relative widening of [`Poly::root_bound`]'s Cauchy and Fujiwara bounds: `16u = 8ε`
+/// covers the division, the `powf` (libm's is within one ulp) and the products of each term
+/// several times over; a bound a few ulps too loose costs nothing.
+pub const ROOT_BOUND_MARGIN: f64 = 1.0 + 16.0 * UNIT_ROUNDOFF;
+
+/// Absolute allowance added to Fujiwara's bound in [`Poly::root_bound`]: 4 × 2^-1074, the
+/// error of the few roundings that may land in the subnormal range (each at most 2^-1075),
+/// where a relative margin means nothing. Roots below it are not representable anyway.
+pub const ROOT_BOUND_UNDERFLOW_PAD: f64 = 4.0 * ETA;
 
 /// A value computed in `f64` together with a bound on its absolute error.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -404,38 +424,17 @@ impl Poly<f64> {
         Some(Poly::new_raw(coeffs))
     }
 
-    /// `p(x)` by Horner's rule with a rigorous bound on the rounding error.
-    ///
-    /// # Accuracy
-    /// Bounds the absolute error of the returned value with respect to the exact value of the
-    /// stored polynomial at the stored `x`: `err = γ(2n+1)·S·(1 + 4u) + n·MIN_POSITIVE`, where
-    /// `S` is `Σ|cᵢ||x|^i` evaluated in floating point and inflated by `1/(1 − γ(2n))` to cover
-    /// its own rounding (Higham eq. 5.3; the extra `(1 + 4u)` covers the products forming the
-    /// bound, the last term underflow). Precondition: finite coefficients and `x`; otherwise
-    /// `value` or `err` is NaN or infinite and [`Bounded::certain_sign`] says `None`.
-    /// The cost is two Horner passes, whatever the accuracy.
-    pub fn eval_with_error(&self, x: f64) -> Bounded {
-        let n = self.coeffs.len();
-        let ax = x.abs();
-        let mut value = 0.0;
-        let mut s = 0.0;
-        for &c in self.coeffs.iter().rev() {
-            value = value * x + c;
-            s = s * ax + c.abs();
-        }
-        let g = gamma(2 * n + 1);
-        let s_up = s / (1.0 - gamma(2 * n));
-        let err = g * s_up * (1.0 + 2.0 * f64::EPSILON) + n as f64 * f64::MIN_POSITIVE;
-        Bounded { value, err }
-    }
-
     /// A bound `B` with every real root in `[−B, B]`: the smaller of Cauchy's and Fujiwara's
     /// bounds, rounded outwards. `None` for constants, the zero polynomial, and non-finite
     /// coefficients.
     ///
     /// # Accuracy
     /// Rigorous for the stored coefficients: each quotient and root is inflated by a relative
-    /// `8ε` margin, well above the few roundings involved.
+    /// [`ROOT_BOUND_MARGIN`], well above the few roundings involved, and Fujiwara's bound by
+    /// an absolute [`ROOT_BOUND_UNDERFLOW_PAD`]. A quotient `|cᵢ/cₙ|` that underflows (as in
+    /// `1e300·x² − 1e-300`, roots `±1e-300`) is not taken as zero: its root is formed as
+    /// `|cᵢ|^{1/k} / |cₙ|^{1/k}`, which does not underflow, so the bound never excludes a
+    /// root (it was 0 there, and every method answered "no root").
     pub fn root_bound(&self) -> Option<f64> {
         if self.degree() == 0 || !self.is_finite() {
             return None;
@@ -448,13 +447,19 @@ impl Poly<f64> {
             let q = c.abs() / lc;
             cauchy = cauchy.max(q);
             let k = n - i;
+            let inv_k = 1.0 / k as f64;
             // Fujiwara: 2·max |c_{n−k}/c_n|^{1/k}, with the constant term halved.
-            let q = if i == 0 { q / 2.0 } else { q };
-            fujiwara = fujiwara.max(q.powf(1.0 / k as f64));
+            let half = if i == 0 { 0.5 } else { 1.0 };
+            let root = if q >= f64::MIN_POSITIVE || *c == 0.0 {
+                (q * half).powf(inv_k)
+            } else {
+                // The quotient underflowed: scale before dividing.
+                (c.abs() * half).powf(inv_k) / lc.powf(inv_k)
+            };
+            fujiwara = fujiwara.max(root);
         }
-        let margin = 1.0 + 8.0 * f64::EPSILON;
-        let cauchy = (1.0 + cauchy) * margin;
-        let fujiwara = 2.0 * fujiwara * margin;
+        let cauchy = (1.0 + cauchy) * ROOT_BOUND_MARGIN;
+        let fujiwara = 2.0 * fujiwara * ROOT_BOUND_MARGIN + ROOT_BOUND_UNDERFLOW_PAD;
         let b = cauchy.min(fujiwara);
         b.is_finite().then_some(b)
     }

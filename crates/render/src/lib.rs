@@ -44,7 +44,6 @@
 //! | [`surface::ENTRY_MARGIN_REL`] = 1e-9 | how far before a bounding-volume entry the root search starts | rel. to `\|t0\| + chord` | far above the slab test's rounding, so a hit on the entry face is kept |
 //! | [`surface::SINGULAR_P_ERR_REL`] = 1e-9 | error box of a hit at a singular point (`∇F ≈ 0`) | rel. to the object's size | heuristic, only where `\|F\|/\|∇F\|` is meaningless (counted) |
 //! | `SPHERE_CLIP_MARGIN` = 1e-9 | widening of a bounding/clipping sphere and its interval | rel. | far above the few roundings, so a touching ray is never clipped |
-//! | `CAUCHY_BOUND_WIDENING_REL` = 8u | widening of Cauchy's root bound for an infinite range | rel. | covers the bound's own rounding (≤ 2u) |
 //! | [`surface::HIT_RESIDUAL_REL`] = 1e-7 | accepted 3-D residual `\|S(u, v) − R(t)\|` of a patch hit | rel. to piece diagonal + `\|O'\|` + `\|t'D\|` | 100 × groebner's `DEFAULT_F_TOL_REL` (asserted at compile time) |
 //! | [`surface::HIT_P_ERR_REL`] = 4e-7 | error box of a patch hit point | rel. to piece diagonal + `\|p\|` | above the residual bound and the solver's `x_tol` (asserted) |
 //! | [`surface::POWER_ZERO_REL`] = 1e-12 | power-basis coefficients snapped to zero | rel. to the net's largest coordinate | round-off residue of degree elevation and subdivision; moves the surface far less than the hit residual |

@@ -117,11 +117,12 @@ impl TraceStats {
 
     /// Root queries that ended without a certified answer: those `poly` refused (non-finite
     /// coefficients from overflow, or a restriction that vanishes identically because the ray
-    /// lies in the surface). The ray then counts as missing that surface. Every other query is
-    /// certified (an `f64` sign `poly` cannot decide is redone exactly, see
+    /// lies in the surface), and those a heuristic `--isolation` method could not resolve. The
+    /// ray then counts as missing that surface. With the certified methods every other query
+    /// is certified (an `f64` sign `poly` cannot decide is redone exactly, see
     /// `roots.exact_fallbacks`), so this should be 0.
     pub fn unresolved_roots(&self) -> u64 {
-        self.roots.rejected
+        self.roots.rejected + self.roots.unresolved
     }
 }
 

@@ -6,7 +6,7 @@
 use std::ops::Range;
 
 use glam::{DVec2, DVec3};
-use poly::{Poly, RootOptions, UNIT_ROUNDOFF};
+use poly::{PolyRef, RootOptions};
 
 use crate::methods::RootMethods;
 
@@ -135,37 +135,18 @@ impl<F: ImplicitFn> Implicit<F> {
     }
 }
 
-/// Relative widening of the Cauchy bound `1 + max|cᵢ/cₙ|` computed in `f64`: `8u` (`u` =
-/// [`UNIT_ROUNDOFF`]) covers the rounding of one division and one addition (at most `2u`
-/// relative) with room to spare, so the widened bound lies above every root.
-const CAUCHY_BOUND_WIDENING_REL: f64 = 8.0 * UNIT_ROUNDOFF;
-
 /// The smallest root of the polynomial held in `ws.coeffs` in `(lo, hi]`, found by `poly`'s
-/// query with `opts` (tolerance and methods); `None` also for a polynomial that vanishes
-/// identically along the ray (the ray lies in the surface). An infinite `hi` (unbounded
-/// surfaces) is first replaced by Cauchy's bound `1 + max|cᵢ/cₙ|`, widened by
-/// [`CAUCHY_BOUND_WIDENING_REL`] for its rounding: every root lies below it, and the solver
-/// then skips its own (costlier, `powf`-based) bound.
+/// query with `opts` (tolerance and methods) on the borrowed coefficients (an infinite `hi` of
+/// an unbounded surface is narrowed by `poly`, with Cauchy's bound); `None` also for a
+/// polynomial that vanishes identically along the ray (the ray lies in the surface).
 pub(crate) fn smallest_root_in(
     ws: &mut Workspace,
     lo: f64,
     hi: f64,
     opts: &RootOptions,
 ) -> Option<f64> {
-    let p = Poly::new(std::mem::take(&mut ws.coeffs));
-    let hi = if hi.is_finite() || p.degree() == 1 {
-        // (A linear polynomial's root is decided against an infinite end directly.)
-        Some(hi)
-    } else if p.degree() == 0 {
-        // A non-zero constant has no root; the zero polynomial is refused by the solver.
-        (p.is_zero()).then_some(hi)
-    } else {
-        p.cauchy_bound()
-            .map(|b| b * (1.0 + CAUCHY_BOUND_WIDENING_REL))
-    };
-    let root = hi.and_then(|hi| p.smallest_root_with(lo, hi, opts, &mut ws.stats.roots));
-    ws.coeffs = p.into_coeffs();
-    root
+    let query = PolyRef::new(&ws.coeffs).roots(lo, hi, opts);
+    query.stats(&mut ws.stats.roots).smallest().ok().flatten()
 }
 
 /// Relative margin by which [`sphere_segment`] widens the bounding sphere and the interval, far

@@ -150,7 +150,7 @@ fn disc_point(rng: &mut impl Rng, w: DVec3, radius: f64) -> DVec3 {
 }
 
 /// The parameter interval where the line `o + t·d` is inside the sphere `|p| ≤ radius`.
-pub(crate) fn sphere_chord(o: DVec3, d: DVec3, radius: f64) -> Option<(f64, f64)> {
+pub fn sphere_chord(o: DVec3, d: DVec3, radius: f64) -> Option<(f64, f64)> {
     let a = d.length_squared();
     let b = o.dot(d);
     let c = o.length_squared() - radius * radius;
@@ -165,7 +165,7 @@ pub(crate) fn sphere_chord(o: DVec3, d: DVec3, radius: f64) -> Option<(f64, f64)
 }
 
 /// The parameter interval where the line is inside the cube `[-h, h]³` (slab method).
-pub(crate) fn box_chord(o: DVec3, d: DVec3, h: f64) -> Option<(f64, f64)> {
+pub fn box_chord(o: DVec3, d: DVec3, h: f64) -> Option<(f64, f64)> {
     let (mut t0, mut t1) = (f64::NEG_INFINITY, f64::INFINITY);
     for k in 0..3 {
         if d[k] == 0.0 {

@@ -213,8 +213,7 @@ fn case(family: Family, param: f64, exact: QPoly) -> Case {
 
 /// The tracer's recorded root queries (`crates/poly/tests/data/teapot_eliminants.txt`, whose
 /// header says how they were made): lines `TAG lo hi x_tol n c0 … cn`.
-pub const TEAPOT_ELIMINANTS: &str =
-    include_str!("../../crates/poly/tests/data/teapot_eliminants.txt");
+pub const TEAPOT_ELIMINANTS: &str = include_str!("../../poly/tests/data/teapot_eliminants.txt");
 
 /// Every recorded eliminant (tag `E`) with its recorded range `(lo, hi]`, in file order.
 pub fn teapot_eliminant_queries() -> Vec<(Poly<f64>, f64, f64)> {
