@@ -16,6 +16,7 @@ use crate::bernstein::Bracket;
 use crate::certified::{CertifiedSearch, Found, exact_isolate};
 use crate::closed_form::{linear_smallest, quadratic_smallest};
 use crate::eval_bound::{certified_sign, certified_sign_pair};
+use crate::multiprec::refine_wide;
 use crate::refine::{Refined, bisect_rational_to_f64, refine_bracket, refine_exact_f64};
 use crate::root_error::RootError;
 use crate::root_interval::RootInterval;
@@ -611,7 +612,8 @@ fn refine_found(
     }
 }
 
-/// Refines a certified bracket, finishing with exact signs if `f64` gets stuck.
+/// Refines a certified bracket; where `f64` gets stuck, finishes in adaptive precision, and
+/// with exact signs only if even that cannot sign a point.
 fn refine_certified(
     p: &Poly<f64>,
     b: Bracket,
@@ -621,10 +623,10 @@ fn refine_certified(
 ) -> f64 {
     match refine_bracket(p.coeffs(), b, x_tol, method, stats) {
         Refined::Root(r) => r,
-        Refined::Stuck(b) => {
+        Refined::Stuck(b) => refine_wide(p.coeffs(), b, x_tol, stats).unwrap_or_else(|| {
             stats.refine_fallbacks += 1;
             refine_exact_f64(p, b, x_tol)
-        }
+        }),
     }
 }
 

@@ -21,6 +21,7 @@ mod closed_form;
 mod eval_bound;
 mod int_poly;
 mod isolate;
+mod multiprec;
 mod ops;
 mod refine;
 mod root_error;
