@@ -12,10 +12,12 @@
 //! its subdivision points are no longer the parent's dyadic points, so a root sitting exactly
 //! on one of those (odd Chebyshev polynomials at 0) is now inside a node. When a run whose `M`
 //! is not [`MIN_MAG_GAIN`] of its parent's is stuck, or after [`MAX_RUNS`] runs, the stuck
-//! piece (after the budget: everything left) is isolated by exact Sturm counts on the stored
-//! polynomial (the sequence is built once per query, counted in
-//! [`RootStats::exact_fallbacks`]). See `paper-notes/isolation.md`, "Restarts and local
-//! exact isolation".
+//! piece (after the budget: everything left) goes to adaptive precision ([`PieceIsolator`]:
+//! double-double, then wider binary floats, rigorous bounds throughout). Only its nodes that
+//! even [`MAX_BITS`](crate::multiprec::MAX_BITS) cannot decide (multiple roots, roots within
+//! one `f64` spacing) are isolated by exact Sturm counts on the stored polynomial (the
+//! sequence is built once per query, counted in [`RootStats::exact_fallbacks`]). See
+//! `paper-notes/isolation.md`, "Restarts and local exact isolation" and "Adaptive precision".
 //!
 //! [`IsolationMethod::Bernstein`]: crate::IsolationMethod::Bernstein
 
