@@ -5,10 +5,12 @@
 //! certified with a rigorous Horner bound, the roots are isolated by Descartes' rule in the
 //! Bernstein basis with rigorous coefficient error bounds ([`IsolationMethod::Bernstein`]),
 //! and refined inside certified brackets. An exact factor `x^k` is divided out first; a piece
-//! where a sign cannot be certified gets a fresh run with its own error bound, and only what
-//! `f64` still cannot decide is isolated with exact rational arithmetic on the same stored
-//! polynomial, on that piece (counted in [`RootStats::exact_fallbacks`]; `certified.rs`).
-//! See `paper-notes/isolation.md`.
+//! where a sign cannot be certified gets a fresh run with its own error bound, and what `f64`
+//! still cannot decide goes to adaptive precision (double-double, then 256 … 1024-bit floats,
+//! with rigorous bounds: [`RootStats::adaptive_pieces`]; `multiprec.rs`). Only a node that even
+//! that cannot decide — a multiple root, roots within one `f64` spacing — is isolated with
+//! exact rational arithmetic on the same stored polynomial, on that node
+//! ([`RootStats::exact_fallbacks`]; `certified.rs`). See `paper-notes/isolation.md`.
 
 use std::cell::Cell;
 
@@ -16,6 +18,7 @@ use crate::bernstein::Bracket;
 use crate::certified::{CertifiedSearch, Found, exact_isolate};
 use crate::closed_form::{linear_smallest, quadratic_smallest};
 use crate::eval_bound::{certified_sign, certified_sign_pair};
+use crate::multiprec::refine_wide;
 use crate::query::with_scratch_poly;
 use crate::refine::{Refined, bisect_rational_to_f64, refine_bracket, refine_exact_f64};
 use crate::root_error::RootError;
@@ -204,8 +207,13 @@ impl Poly<f64> {
     /// Multiple roots are found (a tangent ray's double root is a root); the multiplicity is
     /// not reported. `t_min = −∞` and `t_max = +∞` are accepted. Roots are those of the
     /// polynomial *as stored*: rounding that happened while building the coefficients is not
-    /// undone. Cost grows like `log(1/x_tol)` with the default refinement; a query that
-    /// needs exact arithmetic ([`RootStats::exact_fallbacks`]) is much slower.
+    /// undone. `x_tol = 0` asks for the root to one `f64` spacing. Cost grows like
+    /// `log(1/x_tol)` with the default refinement; where `f64` cannot certify a sign the
+    /// piece is redone in double-double and then in 256 … 1024-bit floats
+    /// ([`RootStats::adaptive_pieces`]), still certified. Only a multiple root of the stored
+    /// polynomial, two roots within one `f64` spacing, or a root exactly on an interval end
+    /// can need exact rational arithmetic on a tiny piece ([`RootStats::exact_fallbacks`]),
+    /// which is much slower; the answer is the same.
     ///
     /// # Examples
     /// ```
@@ -636,7 +644,8 @@ fn refine_found(
     }
 }
 
-/// Refines a certified bracket, finishing with exact signs if `f64` gets stuck.
+/// Refines a certified bracket; where `f64` gets stuck, finishes in adaptive precision, and
+/// with exact signs only if even that cannot sign a point.
 fn refine_certified(
     p: &Poly<f64>,
     b: Bracket,
@@ -647,8 +656,10 @@ fn refine_certified(
     match refine_bracket(p.coeffs(), b, tol, method, stats) {
         Refined::Root(r) => r,
         Refined::Stuck(b) => {
-            stats.refine_fallbacks += 1;
-            refine_exact_f64(p, b, tol)
+            refine_wide(p.coeffs(), b, tol.on(b.lo, b.hi), stats).unwrap_or_else(|| {
+                stats.refine_fallbacks += 1;
+                refine_exact_f64(p, b, tol)
+            })
         }
     }
 }

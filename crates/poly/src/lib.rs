@@ -60,6 +60,7 @@ mod eval_bound;
 mod exact_bisection;
 mod int_poly;
 mod isolate;
+mod multiprec;
 mod near_zero;
 mod ops;
 mod query;

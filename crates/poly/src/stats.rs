@@ -48,6 +48,17 @@ pub struct RootStats {
     /// Refinement reached the `f64` noise floor above the tolerance and finished the bracket
     /// with exact rational signs.
     pub refine_fallbacks: u64,
+    /// Pieces of an isolation that `f64` could not decide and that went to adaptive precision
+    /// (double-double first, then arbitrary-precision floats; `paper-notes/isolation.md`,
+    /// "Adaptive precision"). Only what that still cannot decide reaches
+    /// [`exact_fallbacks`](Self::exact_fallbacks).
+    pub adaptive_pieces: u64,
+    /// Of the [`adaptive_pieces`](Self::adaptive_pieces), those that needed more than
+    /// double-double precision somewhere.
+    pub multiprecision_pieces: u64,
+    /// Refinements that `f64` could not finish and that were finished with adaptive-precision
+    /// signs (before any exact refinement, [`refine_fallbacks`](Self::refine_fallbacks)).
+    pub adaptive_refines: u64,
     /// Interval subdivisions (de Casteljau splits or Sturm bisections) during isolation.
     pub subdivisions: u64,
     /// Polynomial evaluations during refinement.
@@ -67,6 +78,9 @@ impl RootStats {
         self.closed_form += other.closed_form;
         self.exact_fallbacks += other.exact_fallbacks;
         self.refine_fallbacks += other.refine_fallbacks;
+        self.adaptive_pieces += other.adaptive_pieces;
+        self.multiprecision_pieces += other.multiprecision_pieces;
+        self.adaptive_refines += other.adaptive_refines;
         self.subdivisions += other.subdivisions;
         self.refine_evals += other.refine_evals;
     }
@@ -132,6 +146,9 @@ mod tests {
         let mut b = a.clone();
         b.subdivisions = 7;
         b.refine_evals = 3;
+        b.adaptive_pieces = 2;
+        b.multiprecision_pieces = 1;
+        b.adaptive_refines = 4;
         b.merge(&a);
         assert_eq!(b.queries, 4, "2 + 2 queries");
         assert_eq!(b.by_degree[4], 2, "degree 4 twice");
@@ -142,6 +159,15 @@ mod tests {
         );
         assert_eq!(b.exact_fallbacks, 2, "fallbacks summed");
         assert_eq!(b.subdivisions, 7, "only b had subdivisions");
+        assert_eq!(
+            (
+                b.adaptive_pieces,
+                b.multiprecision_pieces,
+                b.adaptive_refines
+            ),
+            (2, 1, 4),
+            "adaptive counters kept"
+        );
         assert_eq!(b.fallback_rate(), 0.5, "2 of 4");
         let mut c = RootStats::default();
         c += &b;

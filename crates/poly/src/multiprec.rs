@@ -1,0 +1,915 @@
+//! Adaptive precision for the pieces `f64` cannot decide: Descartes' rule in the Bernstein
+//! basis and certified point signs in double-double arithmetic, then in arbitrary-precision
+//! binary floating point ([`astro_float`]), the precision doubled until the sign is decided.
+//!
+//! Every evaluation carries a rigorous error bound, so a sign is certified, never guessed.
+//! The model (Higham, *Accuracy and Stability of Numerical Algorithms*, §2.2 and §3.1):
+//! each `+` or `×` of a [`Tier`] returns `(x∘y)(1 + δ) + η` with `|δ| ≤ u` (the tier's unit
+//! roundoff) and `|η| ≤` [`DD_UNDERFLOW`] (double-double only: its error-free products are
+//! exact only without underflow; arbitrary-precision floats have an unbounded exponent range
+//! here, `η = 0`). A straight-line program of such operations with at most `k` roundings on
+//! any path then has absolute error at most `γ(k)·m + (underflow term)`, where `m` is the same
+//! program run exactly on absolute values. `f64` → wide conversion is exact (53 bits fit in
+//! every tier), and so are the interval ends and widths used here (`TwoSum` gives the
+//! difference of two `f64` exactly as a double-double).
+//!
+//! Isolation ([`PieceIsolator`]) bisects `(lo, hi]` at `f64` points, and each node `[x, y]`
+//! gets its Bernstein coefficients computed afresh from the stored coefficients by a Taylor
+//! shift at the tier of that node (no error carried over from a parent): its error bound uses
+//! `M = Σ|cₖ|·max(|x|, |y|)ᵏ`, the shift starting at the end nearer 0. A node whose interior
+//! coefficients are all within their bound moves to the next tier; a node that cannot be
+//! split in `f64` (two roots closer than one `f64` spacing, a multiple root) or is still
+//! undecided at [`MAX_BITS`] is left to the caller's exact isolation (the rare case, see
+//! `paper-notes/isolation.md`, "Adaptive precision").
+
+use astro_float::{BigFloat, RoundingMode};
+
+use crate::bernstein::Bracket;
+use crate::eval_bound::certified_sign;
+use crate::stats::RootStats;
+use crate::univariate::ETA;
+
+/// Unit roundoff of the double-double operations used here, as a bound valid for all of
+/// them: `8u²` with `u = 2^-53`. Joldes, Muller & Popescu, "Tight and rigorous error bounds
+/// for basic building blocks of double-word arithmetic" (ACM TOMS 44, 2017) prove relative
+/// errors `3u²/(1 − 4u)` for the sum of two double-words (their Algorithm 6), `2u²` for a
+/// double-word times a double (Algorithm 9) and `5u²` for the product of two double-words
+/// (Algorithm 12); `8u²` covers each with room for the `(1 − 4u)` factors.
+const DD_UNIT: f64 = 8.0 * (0.5 * f64::EPSILON) * (0.5 * f64::EPSILON);
+
+/// Absolute error allowed per double-double operation for underflow: each uses at most four
+/// `f64` products or fused multiply–adds, whose error terms are exact only when no underflow
+/// occurs; an underflowing rounding errs by at most `2^-1075` absolutely. (Sums of `f64`
+/// numbers never err by underflow.) So `4·2^-1075 < 2^-1072`, rounded up to a power of two.
+const DD_UNDERFLOW: f64 = 4.0 * ETA;
+
+/// Precision of the first arbitrary-precision tier, in bits (the next after double-double's
+/// 106); each further tier doubles it.
+const FIRST_BITS: usize = 256;
+
+/// The precision cap. A node still undecided here holds a multiple root or a cluster tighter
+/// than anything `f64` ends can separate (separation far below `2^-200` of the coefficient
+/// scale); it goes to exact isolation. The tiers 256, 512, 1024 cost a few times more each.
+pub(crate) const MAX_BITS: usize = 1024;
+
+/// Most nodes one piece may visit over all tiers before the rest of it is left to exact
+/// isolation (each node costs one Taylor shift, `O(n²)` wide operations).
+const MAX_NODES: u32 = 4096;
+
+/// Deepest bisection of one piece: 64 halvings cover any `f64` interval of one binade down to
+/// adjacent numbers; past that the node is left to exact isolation.
+const MAX_DEPTH: u32 = 96;
+
+/// Non-dyadic fractions tried when a midpoint's sign is undecided at every tier (`√2 − 1`
+/// and its complement): a root sitting exactly on the midpoint is then avoided.
+const SPLIT_FRACTIONS: [f64; 2] = [0.414_213_562_373_095_1, 0.585_786_437_626_904_9];
+
+/// A precision above `f64`: double-double, or binary floats of `bits` bits of mantissa.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) enum Tier {
+    /// Double-double (`hi + lo`, 106 bits), error-free transformations on `f64`.
+    Dd,
+    /// [`astro_float::BigFloat`] with this many bits (round to nearest, even).
+    Big(usize),
+}
+
+impl Tier {
+    /// The next, more precise tier, `None` above [`MAX_BITS`].
+    fn next(self) -> Option<Tier> {
+        match self {
+            Tier::Dd => Some(Tier::Big(FIRST_BITS)),
+            Tier::Big(b) if 2 * b <= MAX_BITS => Some(Tier::Big(2 * b)),
+            Tier::Big(_) => None,
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Double-double arithmetic (Joldes–Muller–Popescu 2017).
+
+/// A double-double number `hi + lo`, `|lo| ≤ ulp(hi)/2`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Dd {
+    hi: f64,
+    lo: f64,
+}
+
+/// Knuth's TwoSum: `s + e = a + b` exactly (no overflow).
+#[inline]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
+}
+
+/// Dekker's Fast2Sum (`|a| ≥ |b|` or `a = 0`): `s + e = a + b` exactly.
+#[inline]
+fn fast_two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    (s, b - (s - a))
+}
+
+/// TwoProduct by fused multiply–add: `p + e = a·b` exactly without underflow.
+#[inline]
+fn two_prod(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    (p, a.mul_add(b, -p))
+}
+
+impl Dd {
+    #[inline]
+    fn from_f64(x: f64) -> Dd {
+        Dd { hi: x, lo: 0.0 }
+    }
+
+    /// Algorithm 6 of Joldes et al. (accurate double-word sum).
+    #[inline]
+    fn add(self, y: Dd) -> Dd {
+        let (sh, sl) = two_sum(self.hi, y.hi);
+        let (th, tl) = two_sum(self.lo, y.lo);
+        let c = sl + th;
+        let (vh, vl) = fast_two_sum(sh, c);
+        let w = tl + vl;
+        let (hi, lo) = fast_two_sum(vh, w);
+        Dd { hi, lo }
+    }
+
+    /// Algorithm 4 of Joldes et al. (double-word plus double).
+    #[inline]
+    fn add_f(self, y: f64) -> Dd {
+        let (sh, sl) = two_sum(self.hi, y);
+        let v = self.lo + sl;
+        let (hi, lo) = fast_two_sum(sh, v);
+        Dd { hi, lo }
+    }
+
+    /// Algorithm 9 of Joldes et al. (double-word times double).
+    #[inline]
+    fn mul_f(self, y: f64) -> Dd {
+        let (ch, cl1) = two_prod(self.hi, y);
+        let cl2 = self.lo * y;
+        let (th, tl1) = fast_two_sum(ch, cl2);
+        let tl2 = tl1 + cl1;
+        let (hi, lo) = fast_two_sum(th, tl2);
+        Dd { hi, lo }
+    }
+
+    /// Algorithm 12 of Joldes et al. (double-word times double-word).
+    #[inline]
+    fn mul(self, y: Dd) -> Dd {
+        let (ch, cl1) = two_prod(self.hi, y.hi);
+        let tl0 = self.lo * y.lo;
+        let tl1 = self.hi.mul_add(y.lo, tl0);
+        let cl2 = self.lo.mul_add(y.hi, tl1);
+        let cl3 = cl1 + cl2;
+        let (hi, lo) = fast_two_sum(ch, cl3);
+        Dd { hi, lo }
+    }
+
+    /// The sign of the exact value when `|value| > bound` is certain, else 0. `|lo| ≤
+    /// ulp(hi)/2 ≤ 2^-53·|hi|`, so `|value| ≥ |hi|·(1 − 2^-53)`.
+    #[inline]
+    fn sign_beyond(self, bound: f64) -> i8 {
+        if !(self.hi.is_finite() && self.lo.is_finite()) {
+            return 0;
+        }
+        let lower = self.hi.abs() * (1.0 - f64::EPSILON);
+        if lower > bound {
+            if self.hi > 0.0 { 1 } else { -1 }
+        } else {
+            0
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// The tier-generic operations.
+
+/// The operations a tier provides for the Taylor shift, the basis change and Horner's rule.
+trait Arith {
+    type T: Clone;
+    /// `x` exactly.
+    fn exact_f64(&self, x: f64) -> Self::T;
+    /// `hi + lo` (a TwoSum pair) exactly.
+    fn exact_pair(&self, hi: f64, lo: f64) -> Self::T;
+    fn add(&self, x: &Self::T, y: &Self::T) -> Self::T;
+    fn add_f(&self, x: &Self::T, y: f64) -> Self::T;
+    fn mul(&self, x: &Self::T, y: &Self::T) -> Self::T;
+    fn mul_f(&self, x: &Self::T, y: f64) -> Self::T;
+    /// The sign of the exact value of `x` when `|x|` exceeds `γ(k)·scale + tiny` (the
+    /// program's bound; `scale ≥ 0` finite, computed rounded up), else 0.
+    fn sign_beyond(&self, x: &Self::T, k: usize, scale: f64, tiny: f64) -> i8;
+    /// The absolute underflow error of one operation (0 without underflow).
+    fn underflow(&self) -> f64;
+}
+
+/// `γ(k) = k·u/(1 − k·u)` for unit roundoff `u`, rounded up; infinite when `k·u ≥ 1/2`.
+fn gamma_u(k: usize, u: f64) -> f64 {
+    let ku = k as f64 * u;
+    if ku >= 0.5 {
+        f64::INFINITY
+    } else {
+        ku / (1.0 - ku) * (1.0 + 4.0 * f64::EPSILON)
+    }
+}
+
+struct DdArith;
+
+impl Arith for DdArith {
+    type T = Dd;
+    fn exact_f64(&self, x: f64) -> Dd {
+        Dd::from_f64(x)
+    }
+    fn exact_pair(&self, hi: f64, lo: f64) -> Dd {
+        Dd { hi, lo }
+    }
+    fn add(&self, x: &Dd, y: &Dd) -> Dd {
+        x.add(*y)
+    }
+    fn add_f(&self, x: &Dd, y: f64) -> Dd {
+        x.add_f(y)
+    }
+    fn mul(&self, x: &Dd, y: &Dd) -> Dd {
+        x.mul(*y)
+    }
+    fn mul_f(&self, x: &Dd, y: f64) -> Dd {
+        x.mul_f(y)
+    }
+    fn sign_beyond(&self, x: &Dd, k: usize, scale: f64, tiny: f64) -> i8 {
+        let bound = gamma_u(k, DD_UNIT) * scale * (1.0 + 4.0 * f64::EPSILON) + tiny;
+        if bound.is_finite() {
+            x.sign_beyond(bound)
+        } else {
+            0
+        }
+    }
+    fn underflow(&self) -> f64 {
+        DD_UNDERFLOW
+    }
+}
+
+/// Arbitrary-precision binary floats of `bits` bits, round to nearest.
+struct BigArith {
+    bits: usize,
+}
+
+/// Precision that holds any sum of two `f64` numbers exactly: their exponents differ by at
+/// most `2098`, plus 53 bits of mantissa and a carry.
+const EXACT_PAIR_BITS: usize = 2176;
+
+impl BigArith {
+    /// The unit roundoff: `astro_float` rounds the exact result to `bits` bits (rounded up to
+    /// whole 64-bit words); `2^(1 − bits)` is a bound even for a faithful rounding.
+    fn unit(&self) -> f64 {
+        2f64.powi(1 - self.bits as i32)
+    }
+}
+
+const RM: RoundingMode = RoundingMode::ToEven;
+
+impl Arith for BigArith {
+    type T = BigFloat;
+    fn exact_f64(&self, x: f64) -> BigFloat {
+        BigFloat::from_f64(x, 64)
+    }
+    fn exact_pair(&self, hi: f64, lo: f64) -> BigFloat {
+        BigFloat::from_f64(hi, 64).add(&BigFloat::from_f64(lo, 64), EXACT_PAIR_BITS, RM)
+    }
+    fn add(&self, x: &BigFloat, y: &BigFloat) -> BigFloat {
+        x.add(y, self.bits, RM)
+    }
+    fn add_f(&self, x: &BigFloat, y: f64) -> BigFloat {
+        x.add(&BigFloat::from_f64(y, 64), self.bits, RM)
+    }
+    fn mul(&self, x: &BigFloat, y: &BigFloat) -> BigFloat {
+        x.mul(y, self.bits, RM)
+    }
+    fn mul_f(&self, x: &BigFloat, y: f64) -> BigFloat {
+        x.mul(&BigFloat::from_f64(y, 64), self.bits, RM)
+    }
+    fn sign_beyond(&self, x: &BigFloat, k: usize, scale: f64, _tiny: f64) -> i8 {
+        if x.is_nan() || x.is_inf() {
+            return 0;
+        }
+        // γ(k)·scale ≤ 2k·u·scale for k·u ≤ 1/2: the bound is formed in the wide format (u
+        // far below f64's range), rounded up.
+        let u = self.unit();
+        if (k as f64) * u >= 0.5 {
+            return 0;
+        }
+        let mut bound =
+            BigFloat::from_f64(scale * (2.0 * k as f64) * (1.0 + 4.0 * f64::EPSILON), 64);
+        if let Some(e) = bound.exponent() {
+            bound.set_exponent(e - (self.bits as i32 - 1));
+        } else if !bound.is_zero() {
+            return 0;
+        }
+        // The sign of the difference `|x| − bound`: a correctly rounded difference has the
+        // sign of the exact one (no underflow here). (`BigFloat::abs_cmp` is not used: in astro-float 0.9.6
+        // it answered |−0.9| < 3.5e-76 for operands of different precisions.)
+        let margin = x.abs().sub(&bound, self.bits, RM);
+        if margin.is_positive() && !margin.is_zero() {
+            if x.is_negative() { -1 } else { 1 }
+        } else {
+            0
+        }
+    }
+    fn underflow(&self) -> f64 {
+        0.0
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Certified point signs.
+
+/// `Σ|cᵢ|·rⁱ` rounded up (Horner on non-negative numbers is increasing; `2n + 2` roundings,
+/// inflated for them), and `Σ rⁱ` likewise.
+fn abs_weights(c: &[f64], r: f64) -> (f64, f64) {
+    let r = r * (1.0 + 2.0 * f64::EPSILON);
+    let (mut s, mut z) = (0.0f64, 0.0f64);
+    for &ci in c.iter().rev() {
+        s = s * r + ci.abs();
+        z = z * r + 1.0;
+    }
+    let inflate = 1.0 + 2.0 * crate::eval_bound::gamma_ratio_upper(2 * c.len() + 2);
+    (s * inflate, z * inflate)
+}
+
+/// The sign of `p(x)` at one tier by Horner's rule (`2n` roundings), certified, or 0.
+fn horner_sign<A: Arith>(ar: &A, c: &[f64], x: f64) -> i8 {
+    let n = c.len() - 1;
+    let mut v = ar.exact_f64(c[n]);
+    for &ci in c[..n].iter().rev() {
+        v = ar.add_f(&ar.mul_f(&v, x), ci);
+    }
+    let (s, z) = abs_weights(c, x.abs());
+    if !s.is_finite() {
+        return 0;
+    }
+    // Underflow errors are amplified by at most |x| per later step: Σ|x|ⁱ per operation.
+    let tiny = 2.0 * ar.underflow() * z;
+    ar.sign_beyond(&v, 2 * n, s, tiny)
+}
+
+/// The certified sign of `p(x)`: the `f64` tiers of [`certified_sign`], then each wide tier
+/// from `from` up to [`MAX_BITS`]; 0 when none decides (then `p(x)` is zero or within
+/// `2^-1000` of the scale `Σ|cᵢ||x|ⁱ`). Returns the tier that decided (`from` when `f64` did).
+pub(crate) fn point_sign(c: &[f64], x: f64, from: Tier) -> (i8, Tier) {
+    let s = certified_sign(c, x);
+    if s != 0 {
+        return (s, from);
+    }
+    let mut tier = Some(from);
+    while let Some(t) = tier {
+        let s = match t {
+            Tier::Dd => horner_sign(&DdArith, c, x),
+            Tier::Big(bits) => horner_sign(&BigArith { bits }, c, x),
+        };
+        if s != 0 {
+            return (s, t);
+        }
+        tier = t.next();
+    }
+    (0, Tier::Big(MAX_BITS))
+}
+
+// ---------------------------------------------------------------------------------------
+// Bernstein coefficients of one node.
+
+/// What Descartes' rule says about a node at one tier.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Class {
+    /// No root in the open node.
+    Empty,
+    /// Exactly one root (simple) in the open node.
+    One,
+    /// More sign changes, or some coefficient undecided: halve.
+    Split,
+    /// Every interior coefficient is within its error bound: this tier cannot decide the
+    /// node or any part of it.
+    Hopeless,
+}
+
+/// Classifies the node `[x, y]` (`x < y`, on one side of 0 or with `x = 0` or `y = 0`), given
+/// the certified non-zero signs `s_x`, `s_y` of `p` at its ends, by the signs of the scaled
+/// Bernstein coefficients `Bᵢ = C(n, i)·bᵢ` of `p` on it, computed at this tier.
+///
+/// The shift starts at the end `a` nearer 0 and runs towards the other, `t = a + w·u` with
+/// `w = other − a` exact (a double-double pair), so the absolute-value program is bounded by
+/// `M = Σ|cₖ|(|a| + |w|)ᵏ = Σ|cₖ|·max(|x|, |y|)ᵏ`. Taylor shift by Horner's rule on
+/// polynomials (3 roundings per step, `3n`), then `Bᵢ = Σ_{j≤i} C(n−j, i−j)·q_j` as the
+/// Horner-like scheme `A_j = A_{j−1}·(1 + u) + q_j·uʲ` (one rounding per coefficient and step,
+/// `n + 1`). With `k = 4n + 1` roundings: `|B̂ᵢ − Bᵢ| ≤ γ(k)·C(n, i)·M`, since the absolute
+/// program's `B̃ᵢ = Σ_j C(n−j, i−j)·q̃_j ≤ C(n, i)·Σ_j q̃_j = C(n, i)·M` (as
+/// `C(n−j, i−j) = C(n, i)·C(i, j)/C(n, j) ≤ C(n, i)`).
+fn classify<A: Arith>(
+    ar: &A,
+    c: &[f64],
+    (x, y): (f64, f64),
+    (s_x, s_y): (i8, i8),
+    q: &mut Vec<A::T>,
+    b: &mut Vec<A::T>,
+) -> Class {
+    let n = c.len() - 1;
+    let (a, other, s_a, s_other) = if x >= 0.0 {
+        (x, y, s_x, s_y)
+    } else {
+        (y, x, s_y, s_x)
+    };
+    let (wh, wl) = two_sum(other, -a);
+    let w = ar.exact_pair(wh, wl);
+    let r = a.abs().max(other.abs());
+    let (mag, zr) = abs_weights(c, r);
+    if !mag.is_finite() {
+        return Class::Hopeless;
+    }
+    q.clear();
+    q.push(ar.exact_f64(c[n]));
+    q.resize(n + 1, ar.exact_f64(0.0));
+    for k in (0..n).rev() {
+        let len = n - k;
+        for i in (1..=len).rev() {
+            let t = ar.mul(&q[i - 1], &w);
+            q[i] = if a == 0.0 {
+                t
+            } else {
+                ar.add(&ar.mul_f(&q[i], a), &t)
+            };
+        }
+        q[0] = ar.add_f(&ar.mul_f(&q[0], a), c[k]);
+    }
+    b.clear();
+    b.push(q[0].clone());
+    for j in 1..=n {
+        b.push(b[j - 1].clone());
+        for i in (1..j).rev() {
+            b[i] = ar.add(&b[i], &b[i - 1]);
+        }
+        b[j] = ar.add(&b[j], &q[j]);
+    }
+    let k = 4 * n + 1;
+    // Underflow: each operation may add `η`; a later Horner step multiplies such an error by
+    // at most |a| + |w| = r, the basis change by at most C(n, i) ≤ 2ⁿ; at most (n + 1)²
+    // operations feed each output.
+    let tiny = ar.underflow() * zr * 2f64.powi(n as i32) * ((n + 1) * (n + 1)) as f64;
+    let mut binom = 1.0f64;
+    let mut prev = s_a;
+    let mut changes = 0u32;
+    let mut undecided = 0usize;
+    for (i, bi) in b.iter().enumerate().take(n).skip(1) {
+        // C(n, i) from C(n, i − 1), rounded up (exact while it fits 53 bits).
+        binom = (binom * (n - i + 1) as f64 / i as f64) * (1.0 + 2.0 * f64::EPSILON);
+        let s = ar.sign_beyond(bi, k, mag * binom, tiny);
+        if s == 0 {
+            undecided += 1;
+            continue;
+        }
+        changes += u32::from(s != prev);
+        prev = s;
+    }
+    if undecided > 0 {
+        return if undecided == n - 1 {
+            Class::Hopeless
+        } else {
+            Class::Split
+        };
+    }
+    changes += u32::from(s_other != prev);
+    match changes {
+        0 => Class::Empty,
+        1 => Class::One,
+        _ => Class::Split,
+    }
+}
+
+/// Per-tier scratch for [`classify`].
+#[derive(Default)]
+struct Scratch {
+    dd: (Vec<Dd>, Vec<Dd>),
+    big: (Vec<BigFloat>, Vec<BigFloat>),
+}
+
+fn classify_at(tier: Tier, c: &[f64], xy: (f64, f64), s: (i8, i8), sc: &mut Scratch) -> Class {
+    match tier {
+        Tier::Dd => classify(&DdArith, c, xy, s, &mut sc.dd.0, &mut sc.dd.1),
+        Tier::Big(bits) => classify(&BigArith { bits }, c, xy, s, &mut sc.big.0, &mut sc.big.1),
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Isolation of a piece.
+
+/// One result of [`PieceIsolator::next`].
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Outcome {
+    /// A certified bracket holding exactly one simple root.
+    Bracket(Bracket),
+    /// A sub-piece `(lo, hi]` that even [`MAX_BITS`] could not decide (a multiple root, or
+    /// roots closer than one `f64` spacing): the caller isolates it exactly.
+    Undecided(f64, f64),
+}
+
+/// A node of the bisection: `(x, y]`, the certified signs of `p` at its ends, the tier it
+/// starts at, its depth.
+type Node = (f64, f64, i8, i8, Tier, u32);
+
+/// Isolation of the roots of `p` (coefficients `c`, degree ≥ 1) in `(lo, hi]`, where `p(lo)`
+/// and `p(hi)` have certified non-zero signs, by bisection at `f64` points with each node
+/// classified afresh at its own tier, starting at double-double. [`next`](Self::next) yields
+/// the outcomes in increasing order, so a smallest-root query stops at the first root (an
+/// undecided piece may hold none: the caller decides it exactly and asks for more).
+pub(crate) struct PieceIsolator<'c> {
+    c: &'c [f64],
+    stack: Vec<Node>,
+    nodes: u32,
+    used_big: bool,
+    sc: Scratch,
+}
+
+impl<'c> PieceIsolator<'c> {
+    /// Starts on `(lo, hi]` with the certified signs `(s_lo, s_hi)`; counts the piece in
+    /// [`RootStats::adaptive_pieces`].
+    pub(crate) fn new(
+        c: &'c [f64],
+        (lo, hi): (f64, f64),
+        (s_lo, s_hi): (i8, i8),
+        stats: &mut RootStats,
+    ) -> Self {
+        stats.adaptive_pieces += 1;
+        let mut stack = Vec::new();
+        // A piece straddling 0 is split there first (p(0) = c₀ exactly), so that every node
+        // has `max(|x|, |y|)` no larger than needed in its bound `M`.
+        if lo < 0.0 && 0.0 < hi && c[0] != 0.0 {
+            let s0 = if c[0] > 0.0 { 1 } else { -1 };
+            stack.push((0.0, hi, s0, s_hi, Tier::Dd, 0));
+            stack.push((lo, 0.0, s_lo, s0, Tier::Dd, 0));
+        } else {
+            stack.push((lo, hi, s_lo, s_hi, Tier::Dd, 0));
+        }
+        PieceIsolator {
+            c,
+            stack,
+            nodes: 0,
+            used_big: false,
+            sc: Scratch::default(),
+        }
+    }
+
+    /// The next outcome, left to right; `None` when the piece is done. Counts
+    /// [`RootStats::multiprecision_pieces`] once when a tier above double-double was used.
+    pub(crate) fn next(&mut self, stats: &mut RootStats) -> Option<Outcome> {
+        let c = self.c;
+        while let Some((x, y, s_x, s_y, tier, depth)) = self.stack.pop() {
+            if self.nodes >= MAX_NODES || depth >= MAX_DEPTH {
+                return Some(Outcome::Undecided(x, y));
+            }
+            self.nodes += 1;
+            if let Tier::Big(_) = tier
+                && !self.used_big
+            {
+                self.used_big = true;
+                stats.multiprecision_pieces += 1;
+            }
+            let class = if c.len() == 2 {
+                // Degree 1: the end signs decide.
+                if s_x == s_y { Class::Empty } else { Class::One }
+            } else {
+                classify_at(tier, c, (x, y), (s_x, s_y), &mut self.sc)
+            };
+            match class {
+                Class::Empty => {}
+                Class::One => return Some(Outcome::Bracket(Bracket::new(x, y, s_x))),
+                Class::Hopeless => match tier.next() {
+                    Some(t) => self.stack.push((x, y, s_x, s_y, t, depth)),
+                    None => return Some(Outcome::Undecided(x, y)),
+                },
+                Class::Split => {
+                    stats.subdivisions += 1;
+                    match split_point(c, x, y, tier) {
+                        Some((m, s_m, t_m)) => {
+                            let t = tier.max(t_m);
+                            self.stack.push((m, y, s_m, s_y, t, depth + 1));
+                            self.stack.push((x, m, s_x, s_m, t, depth + 1));
+                        }
+                        None => return Some(Outcome::Undecided(x, y)),
+                    }
+                }
+            }
+        }
+        None
+    }
+}
+
+/// A point strictly inside `(x, y)` with a certified sign at some tier from `tier` up: the
+/// midpoint, else one of [`SPLIT_FRACTIONS`]. `None` when no such `f64` point exists or none
+/// is decided at [`MAX_BITS`].
+fn split_point(c: &[f64], x: f64, y: f64, tier: Tier) -> Option<(f64, i8, Tier)> {
+    let mid = 0.5 * x + 0.5 * y;
+    std::iter::once(mid)
+        .chain(SPLIT_FRACTIONS.iter().map(|f| x + (y - x) * f))
+        .filter(|&m| m > x && m < y)
+        .find_map(|m| {
+            let (s, t) = point_sign(c, m, tier);
+            (s != 0).then_some((m, s, t))
+        })
+}
+
+// ---------------------------------------------------------------------------------------
+// Refinement.
+
+/// Bisection of a certified bracket with the signs of [`point_sign`], from where the `f64`
+/// refinement got stuck, to width `x_tol` (or adjacent `f64` numbers). `None` when some
+/// midpoint and its neighbours cannot be signed even at [`MAX_BITS`] (then the caller refines
+/// exactly). Counts [`RootStats::adaptive_refines`].
+///
+/// # Accuracy
+/// The bracket keeps certified opposite end signs, so the root stays inside; the value
+/// returned is the midpoint of a bracket no wider than `x_tol` (or the lower of two adjacent
+/// numbers), within `x_tol` of the root.
+pub(crate) fn refine_wide(c: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Option<f64> {
+    stats.adaptive_refines += 1;
+    let Bracket {
+        mut lo,
+        mut hi,
+        s_lo,
+        ..
+    } = b;
+    let mut tier = Tier::Dd;
+    loop {
+        if hi - lo <= x_tol * (1.0 - f64::EPSILON) || hi <= lo.next_up() {
+            let m = lo + 0.5 * (hi - lo);
+            return Some(if m > lo && m < hi { m } else { lo });
+        }
+        let (m, s, t) = split_point(c, lo, hi, tier)?;
+        stats.refine_evals += 1;
+        tier = t;
+        if s == s_lo {
+            lo = m;
+        } else {
+            hi = m;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::{Rat, rat_from_f64};
+    use crate::univariate::Poly;
+    use num_traits::Signed;
+
+    /// `|computed − exact| ≤ bound` for the double-double operations on awkward operands.
+    #[test]
+    fn double_double_operations_meet_their_error_bounds() {
+        let r = |d: Dd| rat_from_f64(d.hi).unwrap() + rat_from_f64(d.lo).unwrap();
+        let xs = [
+            Dd::from_f64(1.0).add_f(1e-17),
+            Dd::from_f64(-3.0).add_f(2f64.powi(-60)),
+            Dd::from_f64(0.1).mul_f(3.0),
+            Dd::from_f64(7.0e30).add_f(-1.3e14),
+        ];
+        for x in xs {
+            for y in xs {
+                let exact = r(x) * r(y);
+                let got = r(x.mul(y));
+                let bound = exact.abs() * rat_from_f64(DD_UNIT).unwrap();
+                assert!((got - &exact).abs() <= bound, "mul {x:?} {y:?}");
+                let exact = r(x) + r(y);
+                let got = r(x.add(y));
+                let bound = exact.abs() * rat_from_f64(DD_UNIT).unwrap();
+                assert!((got - &exact).abs() <= bound, "add {x:?} {y:?}");
+            }
+        }
+    }
+
+    /// The wide Bernstein coefficients are within their bound of the exact ones, at every
+    /// tier: the bound is what makes each certified sign true.
+    #[test]
+    fn wide_bernstein_signs_agree_with_exact_coefficients() {
+        let p = Poly::<f64>::from_roots(&[0.1, 0.2, 0.2000001, 0.9, -0.4]);
+        let c = p.coeffs();
+        let q = p.to_rat().unwrap();
+        for (x, y) in [(0.15, 0.25), (-0.5, -0.3), (0.0, 0.19)] {
+            let (xr, yr) = (rat_from_f64(x).unwrap(), rat_from_f64(y).unwrap());
+            let shifted = q.compose_affine(&xr, &(&yr - &xr));
+            let n = c.len() - 1;
+            // Exact B_i = Σ_j C(n−j, i−j) q_j (orientation from x).
+            let binom = |n: usize, k: usize| -> Rat {
+                (0..k).fold(Rat::from_integer(1.into()), |acc, j| {
+                    acc * Rat::from_integer(((n - j) as i64).into())
+                        / Rat::from_integer(((j + 1) as i64).into())
+                })
+            };
+            let exact: Vec<Rat> = (0..=n)
+                .map(|i| {
+                    (0..=i).fold(Rat::from_integer(0.into()), |s, j| {
+                        s + binom(n - j, i - j) * shifted.coeff(j)
+                    })
+                })
+                .collect();
+            let sx = q.eval(&xr).signum();
+            let sy = q.eval(&yr).signum();
+            let s = (
+                sx.to_integer().try_into().unwrap(),
+                sy.to_integer().try_into().unwrap(),
+            );
+            let mut changes = 0;
+            for i in 1..=n {
+                changes += usize::from(exact[i].is_positive() != exact[i - 1].is_positive());
+            }
+            for tier in [Tier::Dd, Tier::Big(256)] {
+                let mut sc = Scratch::default();
+                let class = classify_at(tier, c, (x, y), s, &mut sc);
+                match class {
+                    Class::Empty => assert_eq!(changes, 0, "({x}, {y}] {tier:?}"),
+                    Class::One => assert_eq!(changes, 1, "({x}, {y}] {tier:?}"),
+                    Class::Split | Class::Hopeless => {
+                        assert!(
+                            changes >= 2,
+                            "({x}, {y}] {tier:?}: {class:?} with {changes}"
+                        )
+                    }
+                }
+            }
+        }
+    }
+
+    use crate::root_options::RootOptions;
+    use crate::scalar::rat_to_f64;
+    use crate::testutil::{planted, rat, wilkinson};
+    use proptest::prelude::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// The distinct roots of the stored polynomial in `(lo, hi]` by exact Sturm isolation
+    /// (the oracle), refined to `2^-90` relative to the range's scale.
+    fn oracle(p: &Poly<f64>, lo: f64, hi: f64) -> Vec<f64> {
+        let q = p.to_rat().unwrap();
+        let seq = q.sturm().unwrap();
+        let (a, b) = (rat_from_f64(lo).unwrap(), rat_from_f64(hi).unwrap());
+        let scale = lo.abs().max(hi.abs()).log2().floor();
+        let bits = (90.0 - scale).max(90.0) as u32;
+        q.isolate_roots(&a, &b)
+            .unwrap()
+            .iter()
+            .map(|iv| rat_to_f64(&seq.refine_interval(iv, bits).lo))
+            .collect()
+    }
+
+    /// Every root of the oracle is found within `x_tol` (or one `f64` spacing), none is
+    /// added, and the smallest-root query agrees.
+    fn check_all(p: &Poly<f64>, lo: f64, hi: f64, x_tol: f64, stats: &mut RootStats) {
+        let opts = RootOptions::new(x_tol);
+        let got = p.real_roots_with(lo, hi, &opts, stats).unwrap();
+        let want = oracle(p, lo, hi);
+        assert_eq!(
+            got.len(),
+            want.len(),
+            "{p:?} on ({lo}, {hi}]: {got:?} vs {want:?}"
+        );
+        for (g, w) in got.iter().zip(&want) {
+            let allowed = x_tol.max(2.0 * f64::EPSILON * w.abs()) + f64::from_bits(1);
+            assert!((g - w).abs() <= allowed, "{p:?}: {g:e} vs {w:e}");
+        }
+        let first = p.smallest_root_with(lo, hi, &opts, stats);
+        match (first, want.first()) {
+            (None, None) => {}
+            (Some(g), Some(w)) => {
+                let allowed = x_tol.max(2.0 * f64::EPSILON * w.abs()) + f64::from_bits(1);
+                assert!((g - w).abs() <= allowed, "{p:?}: smallest {g:e} vs {w:e}");
+            }
+            (g, w) => panic!("{p:?}: smallest {g:?} vs {w:?}"),
+        }
+    }
+
+    /// The product of `(x − rᵢ)` when every coefficient is exact in `f64` (dyadic roots with
+    /// few bits), else `None`.
+    fn exact_product(roots: &[f64]) -> Option<Poly<f64>> {
+        let rs: Vec<Rat> = roots.iter().map(|&r| rat_from_f64(r).unwrap()).collect();
+        let q = crate::univariate::QPoly::from_roots(&rs);
+        let p = q.to_f64();
+        (p.to_rat()? == q).then_some(p)
+    }
+
+    /// Kac polynomial: independent standard normal coefficients (Box–Muller, seeded).
+    fn kac(d: usize, seed: u64) -> Poly<f64> {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let c = (0..=d)
+            .map(|_| {
+                let (u, v): (f64, f64) = (rng.r#gen::<f64>().max(1e-300), rng.r#gen());
+                (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+            })
+            .collect();
+        Poly::new(c)
+    }
+
+    /// Wilkinson-20 and Kac polynomials of degree 20 used to need exact Sturm counts on
+    /// pieces (`docs/stability.md`: Wilkinson-20 ~0.7 ms, Kac-20 "fallback 0.8 ms"): now
+    /// the adaptive tiers decide them and no exact arithmetic runs.
+    #[test]
+    fn wilkinson_and_kac_take_the_adaptive_path_not_the_exact_one() {
+        let mut stats = RootStats::default();
+        check_all(&wilkinson(20).to_f64(), 0.0, 21.0, 1e-10, &mut stats);
+        assert!(
+            stats.adaptive_pieces > 0,
+            "Wilkinson-20 went adaptive: {stats:?}"
+        );
+        assert_eq!(
+            (stats.exact_fallbacks, stats.refine_fallbacks),
+            (0, 0),
+            "Wilkinson-20: no exact arithmetic"
+        );
+        let mut stats = RootStats::default();
+        for seed in 0..12 {
+            let p = kac(20, seed);
+            let b = p.root_bound().unwrap();
+            check_all(&p, -b, b, 1e-12, &mut stats);
+        }
+        assert!(
+            stats.adaptive_pieces > 0,
+            "some Kac-20 went adaptive: {stats:?}"
+        );
+        assert_eq!(
+            (stats.exact_fallbacks, stats.refine_fallbacks),
+            (0, 0),
+            "Kac-20: no exact arithmetic"
+        );
+    }
+
+    /// Two roots `2^-50 ≈ 8.9e-16` apart (closer than 1e-15) in a polynomial whose stored
+    /// coefficients are exact: double-double cannot separate them at this scale, the
+    /// arbitrary-precision tier does; no exact arithmetic.
+    #[test]
+    fn cluster_closer_than_1e_15_is_separated_in_multiprecision() {
+        let eps = 2f64.powi(-50);
+        let p = exact_product(&[1.0, 1.0 + eps, -2.0]).expect("exact coefficients");
+        let mut stats = RootStats::default();
+        check_all(&p, -3.0, 4.0, 0.0, &mut stats);
+        assert_eq!(oracle(&p, -3.0, 4.0).len(), 3, "three distinct roots");
+        assert!(stats.adaptive_pieces > 0, "{stats:?}");
+        assert_eq!(stats.exact_fallbacks, 0, "decided without exact isolation");
+    }
+
+    /// A genuine double root of the stored polynomial: no precision isolates it by
+    /// Descartes' rule, so its tiny piece (one `f64` spacing) is decided exactly, once per
+    /// query, and the answer is still right.
+    #[test]
+    fn multiple_root_terminates_with_the_right_answer() {
+        let p = exact_product(&[0.5, 0.5, 0.25, -1.5]).expect("exact coefficients");
+        let mut stats = RootStats::default();
+        check_all(&p, -2.0, 2.0, 1e-12, &mut stats);
+        assert!(stats.adaptive_pieces > 0, "{stats:?}");
+        assert!(
+            stats.exact_fallbacks <= 2,
+            "at most one exact sequence per query: {stats:?}"
+        );
+    }
+
+    /// `x = 2^s·y` scales the coefficients by `2^(s·i)` exactly: the same roots scaled, with
+    /// coefficients spanning up to `2^±900`.
+    #[test]
+    fn wide_coefficient_ranges_are_certified() {
+        let base = planted(&[rat(1, 3), rat(2, 7), rat(-5, 11), rat(9, 10), rat(3, 8)]).to_f64();
+        let mut stats = RootStats::default();
+        for s in [-180, -60, 60, 180] {
+            let c: Vec<f64> = base
+                .coeffs()
+                .iter()
+                .enumerate()
+                .map(|(i, &c)| c * 2f64.powi(-s * i as i32))
+                .collect();
+            let p = Poly::new(c);
+            let r = 2f64.powi(s);
+            check_all(&p, -2.0 * r, 2.0 * r, 0.0, &mut stats);
+        }
+    }
+
+    /// Kac polynomials of degree 60 and 100 (the Bernstein run's `Vec` storage and wide
+    /// Taylor shifts) against the oracle.
+    #[test]
+    fn high_degree_kac_matches_the_oracle() {
+        let mut stats = RootStats::default();
+        for (d, seed) in [(60, 3), (100, 4)] {
+            let p = kac(d, seed);
+            check_all(&p, -3.0, 3.0, 1e-12, &mut stats);
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+
+        /// Random clusters: roots `c`, `c + k·2^-e` (e up to 56, so down to 1.4e-17 apart
+        /// relative), with two further roots, as exact dyadic products when they fit.
+        #[test]
+        fn random_clusters_match_the_oracle(
+            c in -64i32..64, k in 1i32..8, e in 30i32..57, r3 in -32i32..32, r4 in -32i32..32
+        ) {
+            let c = f64::from(c) / 16.0;
+            let roots = [c, c + f64::from(k) * 2f64.powi(-e), f64::from(r3) / 8.0, f64::from(r4) / 4.0];
+            if let Some(p) = exact_product(&roots) {
+                let mut stats = RootStats::default();
+                check_all(&p, -10.0, 10.0, 0.0, &mut stats);
+            }
+        }
+    }
+}
