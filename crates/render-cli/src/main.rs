@@ -5,6 +5,8 @@
 //! Arguments are parsed into a raw struct, converted to `RenderOptions`, and handed to the
 //! library; no rendering logic lives here.
 
+mod serve;
+
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -201,6 +203,11 @@ fn run(args: &RawArgs) -> anyhow::Result<()> {
 }
 
 fn main() -> ExitCode {
+    // `render serve …` is the explorer; anything else is `render SCENE …` as before (a scene
+    // file named `serve` is still reachable as `./serve`).
+    if std::env::args_os().nth(1).is_some_and(|a| a == "serve") {
+        return serve::main(std::env::args_os().skip(1));
+    }
     let args = RawArgs::parse();
     match run(&args) {
         Ok(()) => ExitCode::SUCCESS,
