@@ -283,15 +283,21 @@ function zoom(cam, units) {
   return { eye: add(cam.look_at, off), look_at: cam.look_at, up: cam.up };
 }
 
-// Writes `cam` into the scene text the last answer's places refer to.
-function writeCamera(cam) {
+// The camera places of the last answer and the text they refer to.
+function cameraBase() {
+  return { camera: JSON.parse(JSON.stringify(state.info.camera)), text: state.infoText };
+}
+
+// Writes `cam` into `base.text` at `base.camera`'s places (a drag keeps the base it started
+// from: answers arriving meanwhile describe the rewritten text, not the one being rewritten).
+function writeCamera(cam, base) {
   if (state.mode === 'equation') {
     state.camera = cam;
     changed();
     return;
   }
-  const c = state.info.camera;
-  let text = state.infoText;
+  const c = base.camera;
+  let text = base.text;
   const edits = [];
   if (c.eye_range && c.look_at_range) {
     edits.push([c.eye_range, tuple(cam.eye)], [c.look_at_range, tuple(cam.look_at)]);
@@ -315,15 +321,14 @@ view.addEventListener('pointerdown', (e) => {
   const cam = currentCamera();
   if (!cam || !state.info) return;
   view.setPointerCapture(e.pointerId);
-  drag = { x: e.clientX, y: e.clientY, cam, text: state.infoText, pan: e.shiftKey || e.button === 2 };
+  drag = { x: e.clientX, y: e.clientY, cam, base: cameraBase(), pan: e.shiftKey || e.button === 2 };
   state.dragging = true;
 });
 view.addEventListener('pointermove', (e) => {
   if (!drag) return;
   const dx = e.clientX - drag.x, dy = e.clientY - drag.y;
   const cam = drag.pan ? pan(drag.cam, -dx, dy, view.clientHeight || 1) : orbit(drag.cam, dx, dy);
-  state.infoText = drag.text;
-  writeCamera(cam);
+  writeCamera(cam, drag.base);
 });
 const endDrag = () => {
   if (!drag) return;
@@ -337,7 +342,7 @@ view.addEventListener('wheel', (e) => {
   e.preventDefault();
   const cam = currentCamera();
   if (!cam || !state.info) return;
-  writeCamera(zoom(cam, e.deltaY));
+  writeCamera(zoom(cam, e.deltaY), cameraBase());
 }, { passive: false });
 
 // ---- Modes, gallery, downloads ------------------------------------------------------------

@@ -25,7 +25,12 @@ const PROGRESS_DELAY: Duration = Duration::from_secs(1);
 
 /// Render a scene file (Stam's command language) to a PNG.
 #[derive(Debug, Parser)]
-#[command(name = "render", version, about)]
+#[command(
+    name = "render",
+    version,
+    about,
+    after_help = "`render serve [SCENE]` starts the explorer in the browser (see `render serve --help`)."
+)]
 struct RawArgs {
     /// The scene file.
     scene: PathBuf,

@@ -42,7 +42,7 @@ const DEFAULT_MAX_RENDER_SECONDS: u64 = 120;
 
 /// The explorer: an interactive view of a scene in the browser.
 #[derive(Debug, Parser)]
-#[command(name = "render serve", version)]
+#[command(name = "render serve", bin_name = "render serve", version)]
 pub(crate) struct ServeArgs {
     /// A scene file to open first; its directory is the scene directory unless --scenes.
     scene: Option<PathBuf>,
