@@ -222,7 +222,8 @@ async fn the_explorer_works_in_headless_chromium() {
     js(&c, "document.getElementById('mode-scene').click()").await;
     let torus = std::fs::read_to_string(serve_common::scenes_dir().join("torus.scene"))
         .expect("torus.scene")
-        .replace("Size = (840, 840)", "Size = (160, 120)");
+        .replace("Size = (840, 840)", "Size = (160, 120)")
+        .replace("MinorRadius = 1", "Let r = 1  MinorRadius = r");
     set_editor(&c, &torus).await;
     wait_for("the torus at full size", || async {
         let done = js(&c, "return window.explorer.fullFrames > 0 && document.getElementById('stats').textContent.includes('160x120')").await;
@@ -233,6 +234,25 @@ async fn the_explorer_works_in_headless_chromium() {
         editor_text(&c).await.contains("Eye = (0, -8, 5)"),
         "the scene's camera"
     );
+
+    // The `Let` constant has a slider; moving it rewrites the constant in the text.
+    let full_before = full_frames(&c).await;
+    js(
+        &c,
+        "const s = document.querySelector('#lets input[type=range]'); s.value = 0.75; \
+         s.dispatchEvent(new Event('input'));",
+    )
+    .await;
+    assert!(
+        editor_text(&c)
+            .await
+            .contains("Let r = 0.75  MinorRadius = r"),
+        "the slider's value is written into the text"
+    );
+    wait_for("the full render after the slider", || async {
+        (full_frames(&c).await > full_before).then_some(())
+    })
+    .await;
     let view = c.find(Locator::Id("view")).await.expect("the image");
     let full_before = full_frames(&c).await;
     let drag = MouseActions::new("mouse".into())
