@@ -5,6 +5,8 @@
 //! Arguments are parsed into a raw struct, converted to `RenderOptions`, and handed to the
 //! library; no rendering logic lives here.
 
+mod serve;
+
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -22,7 +24,12 @@ const PROGRESS_DELAY: Duration = Duration::from_secs(1);
 
 /// Render a scene file (Stam's command language) to a PNG.
 #[derive(Debug, Parser)]
-#[command(name = "render", version, about)]
+#[command(
+    name = "render",
+    version,
+    about,
+    after_help = "`render serve [SCENE]` starts the explorer in the browser (see `render serve --help`)."
+)]
 struct RawArgs {
     /// The scene file.
     scene: PathBuf,
@@ -200,6 +207,11 @@ fn run(args: &RawArgs) -> anyhow::Result<()> {
 }
 
 fn main() -> ExitCode {
+    // `render serve …` is the explorer; anything else is `render SCENE …` as before (a scene
+    // file named `serve` is still reachable as `./serve`).
+    if std::env::args_os().nth(1).is_some_and(|a| a == "serve") {
+        return serve::main(std::env::args_os().skip(1));
+    }
     let args = RawArgs::parse();
     match run(&args) {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,7 +1,7 @@
 //! [`render`]: the pixel loop — camera rays, stratified supersampling, Stam's preview
 //! resolution, rayon over rows with per-thread statistics.
 
-use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -75,6 +75,21 @@ pub fn render(
     settings: &RenderSettings,
     progress: &(dyn Fn(u32) + Sync),
 ) -> RenderOutput {
+    let never = AtomicBool::new(false);
+    let out = render_with_cancel(scene, camera, settings, progress, &never);
+    out.expect("a render that is never cancelled finishes")
+}
+
+/// [`render`] that stops early once `cancel` is set (by another thread, e.g. a server whose
+/// client asked for a new frame): every image band checks it before tracing, so the work left
+/// after the flag is set is at most the bands already started. `None` when cancelled.
+pub fn render_with_cancel(
+    scene: &PreparedScene,
+    camera: &CameraSpec,
+    settings: &RenderSettings,
+    progress: &(dyn Fn(u32) + Sync),
+    cancel: &AtomicBool,
+) -> Option<RenderOutput> {
     let [width, height] = settings.size;
     let [rx, ry] = settings.resolution.map(|r| r.max(1));
     let camera = Camera::new(camera, width, height);
@@ -87,6 +102,9 @@ pub fn render(
 
     let render_band =
         |ws: &mut Workspace, cy: usize, band_px: &mut [[f32; 4]], band_depth: &mut [f32]| {
+            if cancel.load(Ordering::Relaxed) {
+                return;
+            }
             let y0 = cy * ry as usize;
             let rows = band_px.len() / w;
             let mut cx = 0;
@@ -153,7 +171,7 @@ pub fn render(
         pixels,
         depth: settings.depth.then_some(depth),
     };
-    RenderOutput { film, stats }
+    (!cancel.load(Ordering::Relaxed)).then_some(RenderOutput { film, stats })
 }
 
 /// Colour and coverage of one cell `[x, y, w, h]` (pixel units) from `n × n` stratified

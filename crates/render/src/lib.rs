@@ -104,13 +104,13 @@ mod workspace;
 pub use glam;
 
 pub use crate::camera::Camera;
-pub use crate::film::{Film, RenderOutput, RenderSettings, render};
+pub use crate::film::{Film, RenderOutput, RenderSettings, render, render_with_cancel};
 pub use crate::methods::{PatchMethod, RootMethods};
 pub use crate::options::RenderOptions;
 pub use crate::output::{
-    Gamma, OutputError, PngOptions, read_pfm, write_atomically, write_pfm, write_png,
+    Gamma, OutputError, PngOptions, encode_png, read_pfm, write_atomically, write_pfm, write_png,
 };
-pub use crate::pipeline::{RenderError, RenderReport, render_scene};
+pub use crate::pipeline::{RenderError, RenderReport, prepare_render, render_scene};
 pub use crate::prepared::{PreparedScene, Primitive};
 pub use crate::scene::Scene;
 pub use crate::stats::{HIST_BINS, KindStats, PatchStats, PhaseTimes, StatsReport, TraceStats};

@@ -175,6 +175,17 @@ impl Quantizer8 {
 
 /// Encodes `film` as a PNG at `path` (atomically).
 pub fn write_png(film: &Film, path: &Path, opts: &PngOptions) -> Result<(), OutputError> {
+    write_atomically(path, |out| encode_png(film, out, opts, path))
+}
+
+/// Encodes `film` as a PNG into `out`: the bytes [`write_png`] writes (`path` only names
+/// the destination in errors). The `render serve` explorer sends these bytes.
+pub fn encode_png(
+    film: &Film,
+    out: &mut impl Write,
+    opts: &PngOptions,
+    path: &Path,
+) -> Result<(), OutputError> {
     let (w, h) = (film.width, film.height);
     let color_type = match (opts.bits, opts.alpha) {
         (8, false) => image::ExtendedColorType::Rgb8,
@@ -206,16 +217,14 @@ pub fn write_png(film: &Film, path: &Path, opts: &PngOptions) -> Result<(), Outp
             }
         }
     }
-    write_atomically(path, |out| {
-        // Fast deflate: a render is written once and viewed; file size matters less than the
-        // tens of milliseconds the default level costs at 840².
-        PngEncoder::new_with_quality(out, CompressionType::Fast, FilterType::Adaptive)
-            .write_image(&bytes, w, h, color_type)
-            .map_err(|source| OutputError::Encode {
-                path: path.to_path_buf(),
-                source,
-            })
-    })
+    // Fast deflate: a render is written once and viewed; file size matters less than the
+    // tens of milliseconds the default level costs at 840².
+    PngEncoder::new_with_quality(out, CompressionType::Fast, FilterType::Adaptive)
+        .write_image(&bytes, w, h, color_type)
+        .map_err(|source| OutputError::Encode {
+            path: path.to_path_buf(),
+            source,
+        })
 }
 
 /// Writes the film's depths as a single-channel PFM (`Pf`, little-endian, rows bottom to top

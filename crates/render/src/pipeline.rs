@@ -47,15 +47,18 @@ pub struct RenderReport {
     pub threads: usize,
 }
 
-/// Renders `scene` with `opts` and writes the PNG (and the PFM depth map when asked).
-/// `scene_path` only names the default output file. `progress` receives the number of
-/// finished rows and the total.
-pub fn render_scene(
+/// Checks `opts` against `scene` and builds what [`render`] takes: the prepared scene (with
+/// `opts`' patch method and root finder) and the settings (size, preview resolution, samples,
+/// depth). [`render_scene`] renders exactly this; other front ends (the `render serve`
+/// explorer) call it to get the same pixels without writing files.
+///
+/// # Errors
+/// [`RenderError::Option`] for a zero size or zero samples, [`RenderError::Invalid`] when
+/// the scene breaks an invariant.
+pub fn prepare_render(
     scene: &Scene,
-    scene_path: Option<&Path>,
     opts: &RenderOptions,
-    progress: &(dyn Fn(u32, u32) + Sync),
-) -> Result<RenderReport, RenderError> {
+) -> Result<(PreparedScene, RenderSettings), RenderError> {
     let size = opts.image_size(scene);
     if size.contains(&0) {
         return Err(RenderError::Option(format!(
@@ -66,7 +69,6 @@ pub fn render_scene(
     if opts.samples == 0 {
         return Err(RenderError::Option("--samples must be at least 1".into()));
     }
-    let setup_start = Instant::now();
     let prepared = PreparedScene::with_methods(scene, opts.roots, opts.patch_method)?;
     let settings = RenderSettings {
         size,
@@ -74,6 +76,21 @@ pub fn render_scene(
         samples: opts.samples,
         depth: opts.depth.is_some(),
     };
+    Ok((prepared, settings))
+}
+
+/// Renders `scene` with `opts` and writes the PNG (and the PFM depth map when asked).
+/// `scene_path` only names the default output file. `progress` receives the number of
+/// finished rows and the total.
+pub fn render_scene(
+    scene: &Scene,
+    scene_path: Option<&Path>,
+    opts: &RenderOptions,
+    progress: &(dyn Fn(u32, u32) + Sync),
+) -> Result<RenderReport, RenderError> {
+    let setup_start = Instant::now();
+    let (prepared, settings) = prepare_render(scene, opts)?;
+    let size = settings.size;
     let mut builder = rayon::ThreadPoolBuilder::new();
     if let Some(t) = opts.threads {
         builder = builder.num_threads(t);

@@ -156,6 +156,22 @@ impl Constants {
     }
 }
 
+impl Expr {
+    /// The value of a constant expression (no x, y, z), with `lets` the `Let` constants
+    /// defined before it, in order: what the build step computes for a `Let` (the `render
+    /// serve` explorer uses it to place its sliders).
+    ///
+    /// # Errors
+    /// As the build step: an undefined name, a variable, a non-finite result.
+    pub fn const_value(&self, lets: &[(String, f64)]) -> Result<f64, SceneError> {
+        let mut env = Constants::default();
+        for (name, value) in lets {
+            env.define(name, *value);
+        }
+        eval_const(self, &env)
+    }
+}
+
 /// Evaluates a constant expression (no x, y, z) to a finite `f64`.
 pub(crate) fn eval_const(e: &Expr, env: &Constants) -> Result<f64, SceneError> {
     let p = expand_in(e, env, false)?;
