@@ -965,7 +965,7 @@ impl<'a> Parser<'a> {
                 }
             }
             ValueKind::Shape => {
-                const TYPES: &str = "SPHERE, PLANE, POLYGON, TRIANGLE, BOX, SUPERQUADRIC, TORUS, ALGEBRAIC_SURFACE, BEZIER_PATCH or BEZIER_MESH";
+                const TYPES: &str = "SPHERE, PLANE, POLYGON, TRIANGLE, BOX, SUPERQUADRIC, TORUS, ALGEBRAIC_SURFACE, BEZIER_PATCH, BEZIER_MESH, CONE or CYLINDER";
                 let (w, span) = self.word_value(key, "an object type")?;
                 match ShapeType::ALL
                     .into_iter()
