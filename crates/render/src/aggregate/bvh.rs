@@ -217,15 +217,11 @@ impl Bvh {
     ) -> Option<(u32, f64, H)> {
         let mut best: Option<(u32, f64, H)> = None;
         self.traverse(ray, range, visits, |item, t_max| {
-            if let Some((t, h)) = hit(item) {
-                let better = match &best {
-                    None => t < t_max,
-                    Some((b, bt, _)) => t < *bt || (t == *bt && item < *b),
-                };
-                if better {
-                    best = Some((item, t, h));
-                    return Some(t);
-                }
+            if let Some((t, h)) = hit(item)
+                && precedes(item, t, &best, t_max)
+            {
+                best = Some((item, t, h));
+                return Some(t);
             }
             Some(t_max)
         });
@@ -251,6 +247,15 @@ impl Bvh {
             }
         });
         found
+    }
+}
+
+/// Whether a hit of `item` at `t` replaces `best` (`None`: the first hit, kept when below
+/// `end`): the order of a loop over all items, least `t` first and ties to the lower index.
+pub(super) fn precedes<H>(item: u32, t: f64, best: &Option<(u32, f64, H)>, end: f64) -> bool {
+    match best {
+        None => t < end,
+        Some((b, bt, _)) => t < *bt || (t == *bt && item < *b),
     }
 }
 
