@@ -6,8 +6,9 @@
 # Then the Standard Procedural Databases at 512 x 512 (NFF for us, the generators' .pov twins for
 # POV-Ray; from $SPD_DIR, default ../shared/data/spd beside the repository, else scenes/spd), with
 # each renderer's peak memory (/usr/bin/time -v), and an n x n torus grid over a plane at 400 x 400
-# (generated here in both languages; n = 3, 10, 30, 60).
-# VS_POVRAY_ONLY=classic|spd|grid runs one section.
+# (generated here in both languages; n = 3, 10, 30, 60). Times in seconds: wall and CPU (user +
+# system), ratios ours / POV-Ray.
+# VS_POVRAY_ONLY=classic|spd|grid runs one section; SPD_SCENES="gears mount" some SPD scenes.
 # Both renderers get every core (`nproc`). Prints each wall time and the ratio ours / POV-Ray,
 # then the tracing phase alone: POV-Ray's "Trace Time" and ours (`--stats`, "trace").
 # Without POV-Ray it says so and exits 0. Images go to a temporary directory, printed at the end.
@@ -63,41 +64,50 @@ echo "size ${size}x${size}, $threads threads each"
 fi
 
 # One timed run of each renderer: wall time (s) and peak resident memory (MB), from GNU time.
-timed() { # LOG CMD... -> prints "WALL MB"
+# CPU time (user + system) is printed too: on a machine shared with other work, the wall time
+# measures the machine's load as much as the renderer.
+timed() { # LOG CMD... -> prints "WALL CPU MB"
     local log=$1; shift
     /usr/bin/time -v "$@" >"$log" 2>&1 || { echo "failed: $* (see $log)" >&2; exit 1; }
     awk -F': ' '/Elapsed \(wall clock\)/ { n = split($2, p, ":"); w = 0;
                     for (i = 1; i <= n; i++) w = w * 60 + p[i] }
+                /User time|System time/ { c += $2 }
                 /Maximum resident set size/ { m = $2 / 1024 }
-                END { printf "%.3f %.1f", w, m }' "$log"
+                END { printf "%.3f %.3f %.1f\n", w, c, m }' "$log"
 }
 
 compare() { # NAME OURS-SCENE POV-SCENE SIZE
     local name=$1 ours=$2 pov=$3 px=$4
-    read -r pw pm < <(timed "$out/$name-povray.log" povray +I"$pov" +L"$(dirname "$pov")" \
+    read -r pw pc pm < <(timed "$out/$name-povray.log" povray +I"$pov" +L"$(dirname "$pov")" \
         +O"$out/$name-povray.png" +W"$px" +H"$px" -A -D +WT"$threads")
-    read -r ow om < <(timed "$out/$name-ours.log" "$render" "$ours" -o "$out/$name-ours.png" \
+    read -r ow oc om < <(timed "$out/$name-ours.log" "$render" "$ours" -o "$out/$name-ours.png" \
         --size "${px}x${px}" --threads "$threads" --stats)
-    awk -v s="$name" -v pw="$pw" -v ow="$ow" -v pm="$pm" -v om="$om" \
-        'BEGIN { printf "%-17s %12.3f %12.3f %14.2f %12.1f %12.1f\n", s, pw, ow, ow / pw, pm, om }'
+    awk -v s="$name" -v pw="$pw" -v ow="$ow" -v pc="$pc" -v oc="$oc" -v pm="$pm" -v om="$om" \
+        'BEGIN { printf "%-17s %9.3f %9.3f %7.2f %9.3f %9.3f %7.2f %8.1f %8.1f\n",
+                 s, pw, ow, ow / pw, pc, oc, oc / pc, pm, om }'
+}
+
+header() { # TITLE
+    printf '%-17s %9s %9s %7s %9s %9s %7s %8s %8s\n' "$1" "POV wall" "our wall" ratio \
+        "POV CPU" "our CPU" ratio "POV MB" "our MB"
 }
 
 if [ "$only" = all ] || [ "$only" = spd ]; then
 spd=${SPD_DIR:-$root/../shared/data/spd}
+[ -f "$spd/balls.nff" ] || spd=$root/../../shared/data/spd # from a worktree in wt/NAME
 [ -f "$spd/balls.nff" ] || spd=$root/scenes/spd
 echo
-printf '%-17s %12s %12s %14s %12s %12s\n' "SPD (512x512)" "POV-Ray (s)" "ours (s)" "ours/POV-Ray" \
-    "POV MB" "our MB"
+header "SPD (512x512)"
 for f in "$spd"/*.nff; do
     name=$(basename "$f" .nff)
+    case " ${SPD_SCENES:-$name} " in *" $name "*) ;; *) continue ;; esac
     compare "$name" "$f" "$spd/$name.pov" 512
 done
 fi
 
 if [ "$only" = all ] || [ "$only" = grid ]; then
 echo
-printf '%-17s %12s %12s %14s %12s %12s\n' "torus grid (400)" "POV-Ray (s)" "ours (s)" "ours/POV-Ray" \
-    "POV MB" "our MB"
+header "torus grid (400)"
 for n in 3 10 30 60; do
     # n x n tori (R = 0.35, r = 0.12, spacing 1) over a plane, seen from above and in front.
     awk -v n="$n" 'BEGIN {

@@ -98,6 +98,18 @@ fn every_entity_reaches_the_scene_model() {
     assert!(scene.validate().is_ok());
 }
 
+/// The SPD's gears write index 0 for opaque materials (`f … 0 0`): read as 1, not refused.
+#[test]
+fn opaque_material_with_index_zero_is_accepted() {
+    let scene = parse_nff(
+        "f 1 0.85 0.7 0.3 0.6 3.0827 0 0\ns 0 0 0 1\n",
+        Path::new("g.nff"),
+    )
+    .expect("gears' materials are valid");
+    assert_eq!(scene.objects[0].material.kn, 1.0);
+    assert!(scene.validate().is_ok());
+}
+
 #[test]
 fn uncoloured_lights_share_a_unit_intensity() {
     let scene = parse_nff("l 0 0 5\nl 1 0 5\nl 2 0 5\nl 3 0 5\n", Path::new("l.nff")).unwrap();
@@ -146,6 +158,10 @@ fn malformed_lines_name_file_line_and_column() {
         (
             "f 1 1 1 0.5 0.5 3 0\n",
             "x.nff:1:20: expected the index of refraction (a number), found end of line",
+        ),
+        (
+            "f 1 1 1 0.5 0 3 0.5 0\n",
+            "x.nff:1:21: invalid `f`: the index of refraction of a transparent material must be positive, found 0",
         ),
         (
             "p 3\n0 0 0\n1 1 1\n2 2 2\n",

@@ -3,9 +3,9 @@
 //!
 //! Built top-down with the surface area heuristic over [`SAH_BINS`] centroid bins per node
 //! (Wald 2007, "On fast construction of SAH-based bounding volume hierarchies"; pbrt-v4
-//! §7.3.2), the two halves of a large node in parallel (rayon), then flattened depth-first so
-//! that a node's first child follows it and only the second child's index is stored (pbrt-v4
-//! `LinearBVHNode`). Traversal visits the near child first (by the sign of the ray direction
+//! §7.3.2), the two halves of a large node in parallel (rayon), written depth-first as it goes
+//! so that a node's first child follows it and only the second child's index is stored
+//! (pbrt-v4 `LinearBVHNode`; no intermediate tree). Traversal visits the near child first (by the sign of the ray direction
 //! along the node's split axis) and skips every node that starts beyond the nearest hit found
 //! so far. See `paper-notes/bvh.md`.
 
@@ -90,40 +90,6 @@ struct Item {
     centre: DVec3,
 }
 
-/// A node of the build tree before flattening.
-#[derive(Debug)]
-enum BuildNode {
-    Leaf {
-        bounds: Bounds3,
-        first: usize,
-        count: usize,
-    },
-    Inner {
-        bounds: Bounds3,
-        axis: u8,
-        children: Box<[BuildNode; 2]>,
-        /// Nodes in this subtree (for the flattened layout).
-        size: usize,
-        depth: usize,
-    },
-}
-
-impl BuildNode {
-    fn size(&self) -> usize {
-        match self {
-            BuildNode::Leaf { .. } => 1,
-            BuildNode::Inner { size, .. } => *size,
-        }
-    }
-
-    fn depth(&self) -> usize {
-        match self {
-            BuildNode::Leaf { .. } => 1,
-            BuildNode::Inner { depth, .. } => *depth,
-        }
-    }
-}
-
 const EMPTY: Bounds3 = Bounds3 {
     min: DVec3::INFINITY,
     max: DVec3::NEG_INFINITY,
@@ -153,14 +119,15 @@ impl Bvh {
         if items.is_empty() {
             return bvh;
         }
-        let root = build(&mut items, 0, 1);
-        bvh.nodes.reserve_exact(root.size());
-        bvh.flatten(&root);
+        // A binary tree with leaves of at least one item has fewer than 2n nodes.
+        bvh.nodes.reserve(2 * items.len());
+        let depth = build(&mut items, 0, 1, &mut bvh.nodes);
+        bvh.nodes.shrink_to_fit();
         bvh.order = items.iter().map(|it| it.index).collect();
         bvh.info = BvhInfo {
             items: boxes.len(),
             nodes: bvh.nodes.len(),
-            depth: root.depth(),
+            depth,
             build: start.elapsed(),
         };
         bvh
@@ -174,38 +141,6 @@ impl Bvh {
     /// The box of everything, `None` when empty.
     pub fn bounds(&self) -> Option<Bounds3> {
         self.nodes.first().map(|n| n.bounds)
-    }
-
-    fn flatten(&mut self, node: &BuildNode) {
-        match node {
-            BuildNode::Leaf {
-                bounds,
-                first,
-                count,
-            } => self.nodes.push(Node {
-                bounds: *bounds,
-                offset: *first as u32,
-                count: *count as u32,
-                axis: 0,
-            }),
-            BuildNode::Inner {
-                bounds,
-                axis,
-                children,
-                ..
-            } => {
-                let at = self.nodes.len();
-                self.nodes.push(Node {
-                    bounds: *bounds,
-                    offset: 0,
-                    count: 0,
-                    axis: *axis,
-                });
-                self.flatten(&children[0]);
-                self.nodes[at].offset = self.nodes.len() as u32;
-                self.flatten(&children[1]);
-            }
-        }
     }
 
     /// Calls `visit(item, t_max)` for the items of every leaf whose box the ray crosses before
@@ -282,15 +217,11 @@ impl Bvh {
     ) -> Option<(u32, f64, H)> {
         let mut best: Option<(u32, f64, H)> = None;
         self.traverse(ray, range, visits, |item, t_max| {
-            if let Some((t, h)) = hit(item) {
-                let better = match &best {
-                    None => t < t_max,
-                    Some((b, bt, _)) => t < *bt || (t == *bt && item < *b),
-                };
-                if better {
-                    best = Some((item, t, h));
-                    return Some(t);
-                }
+            if let Some((t, h)) = hit(item)
+                && precedes(item, t, &best, t_max)
+            {
+                best = Some((item, t, h));
+                return Some(t);
             }
             Some(t_max)
         });
@@ -319,21 +250,37 @@ impl Bvh {
     }
 }
 
-/// Builds the subtree of `items` (which start at `first` in the final item order) at `depth`.
-fn build(items: &mut [Item], first: usize, depth: usize) -> BuildNode {
-    let bounds = items.iter().fold(EMPTY, |b, it| b.union(&it.bounds));
+/// Whether a hit of `item` at `t` replaces `best` (`None`: the first hit, kept when below
+/// `end`): the order of a loop over all items, least `t` first and ties to the lower index.
+pub(super) fn precedes<H>(item: u32, t: f64, best: &Option<(u32, f64, H)>, end: f64) -> bool {
+    match best {
+        None => t < end,
+        Some((b, bt, _)) => t < *bt || (t == *bt && item < *b),
+    }
+}
+
+/// Appends the subtree of `items` (which start at `first` in the final item order) at `depth`
+/// to `out`, depth-first; inner nodes' child indices count from the start of `out`. Returns
+/// the subtree's depth.
+fn build(items: &mut [Item], first: usize, depth: usize, out: &mut Vec<Node>) -> usize {
+    // The node's box and the box of its items' centres, in one pass.
+    let (bounds, centres) = items.iter().fold((EMPTY, EMPTY), |(b, c), it| {
+        (
+            b.union(&it.bounds),
+            Bounds3::new(c.min.min(it.centre), c.max.max(it.centre)),
+        )
+    });
     let n = items.len();
-    let leaf = BuildNode::Leaf {
+    let leaf = Node {
         bounds,
-        first,
-        count: n,
+        offset: first as u32,
+        count: n as u32,
+        axis: 0,
     };
     if n == 1 || depth >= MAX_DEPTH {
-        return leaf;
+        out.push(leaf);
+        return 1;
     }
-    let centres = items
-        .iter()
-        .fold(EMPTY, |b, it| b.union(&Bounds3::new(it.centre, it.centre)));
     let ext = centres.max - centres.min;
     let axis = if ext.x >= ext.y && ext.x >= ext.z {
         0
@@ -345,33 +292,55 @@ fn build(items: &mut [Item], first: usize, depth: usize) -> BuildNode {
     let mid = if ext[axis] > 0.0 && ext[axis].is_finite() {
         match sah_split(items, &bounds, centres.min[axis], ext[axis], axis) {
             Some(mid) => mid,
-            None => return leaf,
+            None => {
+                out.push(leaf);
+                return 1;
+            }
         }
     } else if n <= MAX_LEAF_ITEMS {
-        return leaf;
+        out.push(leaf);
+        return 1;
     } else {
         // Equal centres: no split separates them; halve by count so leaves stay small.
         n / 2
     };
-    let (lo, hi) = items.split_at_mut(mid);
-    let (a, b) = if n > PARALLEL_MIN_ITEMS {
-        rayon::join(
-            || build(lo, first, depth + 1),
-            || build(hi, first + mid, depth + 1),
-        )
-    } else {
-        (
-            build(lo, first, depth + 1),
-            build(hi, first + mid, depth + 1),
-        )
-    };
-    BuildNode::Inner {
+    let at = out.len();
+    out.push(Node {
         bounds,
+        offset: 0,
+        count: 0,
         axis: axis as u8,
-        size: 1 + a.size() + b.size(),
-        depth: 1 + a.depth().max(b.depth()),
-        children: Box::new([a, b]),
-    }
+    });
+    let (lo, hi) = items.split_at_mut(mid);
+    let (dl, dr) = if n > PARALLEL_MIN_ITEMS {
+        // Each half into its own vector, then appended with its inner nodes' child indices
+        // moved by where it lands.
+        let (mut left, mut right) = (Vec::new(), Vec::new());
+        let (dl, dr) = rayon::join(
+            || build(lo, first, depth + 1, &mut left),
+            || build(hi, first + mid, depth + 1, &mut right),
+        );
+        append_subtree(out, left);
+        out[at].offset = out.len() as u32;
+        append_subtree(out, right);
+        (dl, dr)
+    } else {
+        let dl = build(lo, first, depth + 1, out);
+        out[at].offset = out.len() as u32;
+        (dl, build(hi, first + mid, depth + 1, out))
+    };
+    1 + dl.max(dr)
+}
+
+/// Appends a subtree built in its own vector, rebasing its inner nodes' child indices.
+fn append_subtree(out: &mut Vec<Node>, sub: Vec<Node>) {
+    let base = out.len() as u32;
+    out.extend(sub.into_iter().map(|mut node| {
+        if node.count == 0 {
+            node.offset += base;
+        }
+        node
+    }));
 }
 
 /// The cheapest binned SAH split of `items` along `axis` (centres spanning `lo .. lo + ext`):
@@ -384,9 +353,10 @@ fn sah_split(
     ext: f64,
     axis: usize,
 ) -> Option<usize> {
+    let scale = SAH_BINS as f64 / ext;
     let bin_of = |it: &Item| -> usize {
         // A float-to-int `as` saturates (NaN → 0): any centre lands in some bin.
-        (((it.centre[axis] - lo) / ext * SAH_BINS as f64) as usize).min(SAH_BINS - 1)
+        (((it.centre[axis] - lo) * scale) as usize).min(SAH_BINS - 1)
     };
     let mut counts = [0usize; SAH_BINS];
     let mut boxes = [EMPTY; SAH_BINS];

@@ -75,14 +75,10 @@ impl Aggregate {
             )
             .map(|(k, t, h)| (self.bounded[k as usize], t, h));
         for &i in &self.unbounded {
-            if let Some((t, h)) = hit(i) {
-                let better = match &best {
-                    None => t < range.end,
-                    Some((b, bt, _)) => t < *bt || (t == *bt && i < *b),
-                };
-                if better {
-                    best = Some((i, t, h));
-                }
+            if let Some((t, h)) = hit(i)
+                && bvh::precedes(i, t, &best, range.end)
+            {
+                best = Some((i, t, h));
             }
         }
         best

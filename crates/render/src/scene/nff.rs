@@ -146,8 +146,25 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<Scene, SceneError> {
                 let ks = line.number("Ks")?;
                 let shine = line.number("Shine")?;
                 let t = line.number("the transmittance T")?;
-                let ior = line.number("the index of refraction")?;
+                let at_ior = line.peek_offset();
+                let mut ior = line.number("the index of refraction")?;
                 line.finish()?;
+                if ior <= 0.0 {
+                    // Opaque materials may carry any index (the SPD's gears write 0): it is
+                    // never used, so it is read as 1. A transparent one needs a real index.
+                    if t > 0.0 {
+                        return Err(SceneError::at(
+                            &line.span_at(at_ior),
+                            ErrorKind::InvalidValue {
+                                key: "f".into(),
+                                reason: format!(
+                                    "the index of refraction of a transparent material must be positive, found {ior}"
+                                ),
+                            },
+                        ));
+                    }
+                    ior = 1.0;
+                }
                 material = nff_material(color, kd, ks, shine, t, ior);
             }
             "s" => {
@@ -376,6 +393,13 @@ impl<'a> Line<'a> {
 
     fn peek(&self) -> Option<&'a str> {
         self.words.clone().next()
+    }
+
+    /// The byte offset of the next word (or of the end of the line).
+    fn peek_offset(&self) -> usize {
+        self.peek().map_or(self.raw.len(), |w| {
+            w.as_ptr() as usize - self.raw.as_ptr() as usize
+        })
     }
 
     fn span_at(&self, at: usize) -> Span {
