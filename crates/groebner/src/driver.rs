@@ -499,116 +499,20 @@ pub(crate) fn find_roots<T: SolveScalar, P: Rows<T>, Q: Rows<f64>>(
     Verdict::Finite
 }
 
-/// Two univariate `f64` polynomials (lowest power first) whose Sylvester determinant, each
-/// scaled to a largest coefficient of 1, is below this fraction of its Hadamard bound are
-/// taken as possibly sharing a root, `2⁻²⁶ ≈ 1.5e-8` (about `√ε`): a pre-test only (the
-/// decision is exact), so a margin far above the rounding of a 6 × 6 elimination costs only
-/// the rare exact check, while generic pairs pass it by orders of magnitude.
-const SHARED_ROOT_REL: f64 = 1.0 / (1u64 << 26) as f64;
-
-/// Largest Sylvester matrix the `f64` pre-test of [`nearly_share_a_root`] builds on the stack
-/// (two cubics: 6); larger pairs go to the exact test directly.
-const SHARED_ROOT_MAX_SIZE: usize = 8;
-
-/// Whether `a` and `b` may have a common (complex) root: their Sylvester determinant is small
-/// (see [`SHARED_ROOT_REL`]); `true` also when the matrix exceeds [`SHARED_ROOT_MAX_SIZE`].
-fn nearly_share_a_root(a: &[f64], b: &[f64]) -> bool {
-    let trim = |p: &[f64]| -> usize { p.iter().rposition(|&c| c != 0.0).unwrap_or(0) };
-    let (m, n) = (trim(a), trim(b));
-    if m == 0 || n == 0 {
-        return false; // a non-zero constant has no root
-    }
-    let size = m + n;
-    if size > SHARED_ROOT_MAX_SIZE {
-        return true;
-    }
-    let scale = |p: &[f64]| 1.0 / p.iter().fold(0.0f64, |s, c| s.max(c.abs()));
-    let (sa, sb) = (scale(a), scale(b));
-    let mut mat = [0.0f64; SHARED_ROOT_MAX_SIZE * SHARED_ROOT_MAX_SIZE];
-    // Rows 0..n: a shifted (highest power first); rows n..n+m: b shifted.
-    for r in 0..n {
-        for k in 0..=m {
-            mat[r * size + r + k] = a[m - k] * sa;
-        }
-    }
-    for r in 0..m {
-        for k in 0..=n {
-            mat[(n + r) * size + r + k] = b[n - k] * sb;
-        }
-    }
-    let hadamard: f64 = (0..size)
-        .map(|r| {
-            mat[r * size..(r + 1) * size]
-                .iter()
-                .map(|x| x * x)
-                .sum::<f64>()
-                .sqrt()
-        })
-        .product();
-    // Gaussian elimination with partial pivoting.
-    let mut det = 1.0;
-    for col in 0..size {
-        let Some(p) = (col..size).max_by(|&i, &j| {
-            mat[i * size + col]
-                .abs()
-                .total_cmp(&mat[j * size + col].abs())
-        }) else {
-            return true;
-        };
-        let pivot = mat[p * size + col];
-        if pivot == 0.0 {
-            return true;
-        }
-        if p != col {
-            for k in 0..size {
-                mat.swap(p * size + k, col * size + k);
-            }
-        }
-        det *= pivot;
-        for r in col + 1..size {
-            let f = mat[r * size + col] / pivot;
-            for k in col..size {
-                mat[r * size + k] -= f * mat[col * size + k];
-            }
-        }
-    }
-    // NaN (overflowed input) counts as "may share": the exact test decides.
-    det.abs() <= SHARED_ROOT_REL * hadamard || det.is_nan()
-}
-
-/// The row of `v^{Deg_v}`: the leading coefficient in `v`, a polynomial in `u`.
-fn leading_row<T: poly::Scalar>(p: &impl Rows<T>) -> &[T] {
-    p.rows().nth(deg_v(p)).unwrap_or(&[])
-}
-
 /// Resultant methods, when no root verified: whether `F1 = F2 = 0` has no common root at all,
 /// real or complex — the resultant's roots all "at `v = ∞`". Exact, on the exact values of the
 /// inputs: with `g = gcd(lc_v F1, lc_v F2)`, every root of `Res_v` must be a root of `g` (the
 /// resultant stripped of `g`'s factors is constant), and then the common roots all have
-/// `g(u) = 0`, so `1 ∈ (F1, F2, g)` (Buchberger, Theorem 1) decides. In `f64` mode the exact
-/// test runs only when the leading coefficients may share a root ([`nearly_share_a_root`]):
-/// without a common root of theirs every root of the resultant is a finite common root.
+/// `g(u) = 0`, so `1 ∈ (F1, F2, g)` (Buchberger, Theorem 1) decides. Exact mode only: an
+/// `f64` pre-test (a small Sylvester determinant of the two leading coefficients) passed on
+/// most teapot systems and made the per-ray solve milliseconds slower, so `f64` keeps
+/// `Finite` here.
 fn no_common_root_at_all<T: SolveScalar, P: Rows<T>>(f: [&P; 2]) -> bool {
     if !T::EXACT {
-        let to_f64 = |row: &[T], out: &mut [f64; SHARED_ROOT_MAX_SIZE + 1]| -> Option<usize> {
-            (row.len() <= out.len()).then(|| {
-                for (o, c) in out.iter_mut().zip(row) {
-                    *o = c.nearest_f64();
-                }
-                row.len()
-            })
-        };
-        let (mut a, mut b) = (
-            [0.0; SHARED_ROOT_MAX_SIZE + 1],
-            [0.0; SHARED_ROOT_MAX_SIZE + 1],
-        );
-        if let (Some(la), Some(lb)) = (
-            to_f64(leading_row(f[0]), &mut a),
-            to_f64(leading_row(f[1]), &mut b),
-        ) && !nearly_share_a_root(&a[..la], &b[..lb])
-        {
-            return false;
-        }
+        // On the teapot the pre-test passes for most systems (their leading coefficients in
+        // v share roots), and the exact test then costs milliseconds per ray: exact mode only
+        // until a cheaper f64 decision exists.
+        return false;
     }
     let exact = |p: &P| -> Option<BiPoly<Rat>> {
         let stride = p.rows().next().map_or(0, <[T]>::len);

@@ -62,7 +62,6 @@
 //! | `CERT_WIDTH_REL` = 1e-6 (`driver.rs`) | widest component of `abs(ê) ≤ Ē` accepted | relative to the `u`-range | its midpoint is then well within Newton's reach |
 //! | `VANISH_REL` = 2⁻²⁶ (`driver.rs`) | a coefficient of `g(u_r, v)` counts as zero | relative to its terms | `u_r` is known to `x_tol`; `√ε` leaves room for `x_tol` up to ~1e-9 |
 //! | `NEAR_DOUBLE_REL` = 2⁻²⁶ (`driver.rs`) | a critical point of the `f64` eliminant is a candidate double root | relative to its terms | far above a double root's rounding; spurious candidates are verified |
-//! | `SHARED_ROOT_REL` = 2⁻²⁶ (`driver.rs`) | pre-test for the leading coefficients in `v` sharing a root | relative to the Hadamard bound | a pre-test only (the decision is exact) |
 //! | `NEWTON_MAX_STEP_REL` = 1e-3, `NEWTON_STEPS` = 4 (`driver.rs`) | largest polish step; polish iterations | relative to the box; count | a larger step means the candidate was not near this root |
 //! | `MERGE_X_TOLS` = 4, `U_ERR_X_TOLS` = 2 (`driver.rs`) | roots merged within `4·x_tol`; a `u`-candidate's error `2·x_tol` | multiples of `x_tol` | refinement to `x_tol` plus the polish's movement |
 //! | `SHARPEN_BITS` = 96, 192, 384 (`driver.rs`) | exact mode: precisions of a narrowed `u`-root | absolute (bits) | `h'` reached 2⁶⁰ on the teapot, `x_tol` ≈ 2⁻³³ |

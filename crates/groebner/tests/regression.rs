@@ -194,17 +194,19 @@ fn exact_buchberger_on_a_degree_six_pair_finishes() {
 /// `−2(3u + 1)` vanishes only where both leading coefficients in `v` do ("at `v = ∞`").
 #[test]
 fn no_common_root_behind_a_nonconstant_resultant() {
+    // Exact mode only: the f64 decision is not done (driver.rs, `no_common_root_at_all`).
     let f1 = qb(&[(-1, 2, 0), (3, 1, 1), (1, 0, 1)]);
     let f2 = qb(&[(2, 2, 0), (-6, 1, 1), (-2, 0, 1), (-2, 0, 0)]);
-    assert_verdict(&f1, &f2, 0.0, 1.0, Verdict::NoCommonRoot, "F2 = −2·F1 − 2");
-    assert_verdict(
-        &f1,
-        &f2,
-        -2.0,
-        2.0,
-        Verdict::NoCommonRoot,
-        "F2 = −2·F1 − 2, wide",
-    );
+    for (lo, hi) in [(0.0, 1.0), (-2.0, 2.0)] {
+        for m in METHODS {
+            let sol = solve(&f1, &f2, &boxed(m, lo, hi)).unwrap();
+            assert_eq!(
+                sol.verdict,
+                Verdict::NoCommonRoot,
+                "exact {m:?} on [{lo}, {hi}]²"
+            );
+        }
+    }
 }
 
 /// A system of degree 3 in `u` and `v` with coefficients spread over `1e±300` (finite).
