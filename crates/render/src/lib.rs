@@ -29,6 +29,7 @@
 //! ```
 
 mod camera;
+mod cancel;
 pub mod geometry;
 mod job;
 mod material;
@@ -47,15 +48,17 @@ mod workspace;
 pub use glam;
 
 pub use crate::camera::Camera;
-pub use crate::job::{RenderError, RenderReport, render_scene};
+pub use crate::cancel::{Cancel, Cancelled};
+pub use crate::job::{RenderError, RenderReport, render_scene, render_scene_with_cancel};
 pub use crate::material::{surface_color, texture_color};
 pub use crate::options::RenderOptions;
 pub use crate::output::{
-    Gamma, OutputError, PngOptions, read_pfm, write_atomically, write_pfm, write_png,
+    Gamma, OutputError, PendingOutputs, PngOptions, abandon_pending_outputs, read_pfm,
+    write_atomically, write_pfm, write_png,
 };
 pub use crate::poly3::{Eval3, Poly3, RestrictScratch, Term3};
 pub use crate::prepared::{PreparedScene, Primitive};
-pub use crate::renderer::{Film, RenderOutput, RenderSettings, render};
+pub use crate::renderer::{Film, RenderOutput, RenderSettings, render, render_with_cancel};
 pub use crate::scene::Scene;
 pub use crate::stats::{KindStats, PhaseTimes, StatsReport, TraceStats};
 pub use crate::workspace::{RootMethods, Workspace};

@@ -85,8 +85,9 @@ fn implicit<F: ImplicitFn>(f: F, bounding: &BoundingVolume) -> Implicit<F> {
 }
 
 /// Builds the world-space surface of one shape. `bounding` is in the shape's coordinates;
-/// shapes placed by an internal frame (torus) get it through the same frame.
-fn build_surface(
+/// shapes placed by an internal frame (torus) get it through the same frame. `None` for
+/// degenerate geometry (the scene builder calls it to locate that error).
+pub(crate) fn build_surface(
     shape: &ShapeKind,
     bounding: &BoundingVolume,
     world_from_object: &Transform,

@@ -7,6 +7,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::camera::Camera;
+use crate::cancel::{Cancel, Cancelled};
 use crate::prepared::PreparedScene;
 use crate::scene::{CameraSpec, Rgb};
 use crate::stats::TraceStats;
@@ -75,6 +76,24 @@ pub fn render(
     settings: &RenderSettings,
     progress: &(dyn Fn(u32) + Sync),
 ) -> RenderOutput {
+    match render_with_cancel(scene, camera, settings, progress, &Cancel::new()) {
+        Ok(out) => out,
+        Err(Cancelled) => unreachable!("a token nobody holds is never cancelled"),
+    }
+}
+
+/// [`render`] that stops when `cancel` is cancelled: every worker checks the token before
+/// each cell, so the call returns within one cell's rays per thread.
+///
+/// # Errors
+/// [`Cancelled`] when the token was cancelled before the last cell was done.
+pub fn render_with_cancel(
+    scene: &PreparedScene,
+    camera: &CameraSpec,
+    settings: &RenderSettings,
+    progress: &(dyn Fn(u32) + Sync),
+    cancel: &Cancel,
+) -> Result<RenderOutput, Cancelled> {
     let [width, height] = settings.size;
     let [rx, ry] = settings.resolution.map(|r| r.max(1));
     let camera = Camera::new(camera, width, height);
@@ -91,6 +110,9 @@ pub fn render(
             let rows = band_px.len() / w;
             let mut cx = 0;
             while cx * (rx as usize) < w {
+                if cancel.is_cancelled() {
+                    return;
+                }
                 let x0 = cx * rx as usize;
                 let cols = (rx as usize).min(w - x0);
                 let cell = [x0 as f64, y0 as f64, cols as f64, rows as f64];
@@ -152,13 +174,14 @@ pub fn render(
                 a
             })
     };
+    cancel.check()?;
     let film = Film {
         width,
         height,
         pixels,
         depth: settings.depth.then_some(depth),
     };
-    RenderOutput { film, stats }
+    Ok(RenderOutput { film, stats })
 }
 
 /// Colour and coverage of one cell `[x, y, w, h]` (pixel units) from `n × n` stratified

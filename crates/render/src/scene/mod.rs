@@ -9,6 +9,7 @@ mod expr;
 mod lexer;
 mod model;
 mod print;
+mod source;
 mod syntax;
 
 #[allow(unused_imports, reason = "used by the polygon surface")]
@@ -21,10 +22,13 @@ pub use model::{
 
 // The scene language (text → tokens → syntax tree → `Scene`); see
 // `paper-notes/scene-language.md`.
-pub use build::{MAX_IMAGE_SIDE, MAX_RECURSION_DEPTH, build, load, parse};
-pub use error::{ErrorKind, SceneError, Span};
+pub use build::{
+    MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_RECURSION_DEPTH, build, check_image_size, load, parse,
+};
+pub use error::{ErrorKind, MAX_MESSAGE_CHARS, MAX_QUOTED_CHARS, SceneError, Span, escape_message};
 pub use expr::{Axis, BinOp, Expr, ExprKind, MAX_EQUATION_DEGREE};
 pub use print::print;
+pub use source::{MAX_CONTROL_POINT_BYTES, MAX_SCENE_BYTES, MAX_TEXTURE_BYTES, MAX_TEXTURE_TEXELS};
 pub use syntax::{
     Block, Command, Entry, Key, MAX_EXPR_DEPTH, MAX_NESTING, SceneAst, ShapeType, Spanned,
     TextureType, Value, parse_syntax,

@@ -352,8 +352,11 @@ impl ShapeKind {
                 positive(size.x, "Size")?;
                 positive(size.y, "Size")?;
                 positive(size.z, "Size")?;
-                if *power == 0 {
-                    return Err(InvalidModel::new("Power", "must be an integer ≥ 1"));
+                if !(1..=crate::surface::MAX_SUPERQUADRIC_POWER).contains(power) {
+                    return Err(InvalidModel::new(
+                        "Power",
+                        "must be an integer from 1 to MAX_SUPERQUADRIC_POWER (512)",
+                    ));
                 }
                 Ok(())
             }
