@@ -29,7 +29,7 @@ fn superquadric_power_beyond_the_limit_is_a_located_error_and_the_limit_renders(
         let e = parse(&superquadric(p), Path::new("r.scene")).unwrap_err();
         let msg = e.to_string();
         assert!(
-            msg.starts_with("r.scene:3:") && msg.contains("from 1 to 512"),
+            msg.starts_with("r.scene:3:") && msg.contains("at most 512"),
             "Power = {p}: {msg}"
         );
     }
@@ -158,9 +158,12 @@ fn texture_errors_are_short_and_special_files_are_refused() {
     );
     #[cfg(unix)]
     {
-        let e = parse(&scene("/dev/zero Size = (4,4)"), &dir.path().join("r.scene"))
-            .unwrap_err()
-            .to_string();
+        let e = parse(
+            &scene("/dev/zero Size = (4,4)"),
+            &dir.path().join("r.scene"),
+        )
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("not a regular file"), "{e}");
     }
 }

@@ -1158,10 +1158,14 @@ fn build_shape(f: &Fields<'_>, shape: ShapeType, base: &Path) -> Result<ShapeKin
                 invalid(
                     span,
                     Key::Power,
-                    format!(
-                        "must be a whole number from 1 to {MAX_SUPERQUADRIC_POWER} (the \
-                         largest power the ray polynomial's root finder handles), found {p}"
-                    ),
+                    if p > f64::from(MAX_SUPERQUADRIC_POWER) {
+                        format!(
+                            "must be at most {MAX_SUPERQUADRIC_POWER} (the largest power the \
+                             ray polynomial's root finder handles), found {p}"
+                        )
+                    } else {
+                        format!("must be a whole number ≥ 1, found {p}")
+                    },
                 )
             })?;
             ShapeKind::Superquadric {
