@@ -17,7 +17,9 @@ use anyhow::Context;
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use poly::{IsolationMethod, RefineMethod};
-use render::{Gamma, PatchMethod, PngOptions, RenderOptions, RootMethods, StatsReport};
+use render::{Cancel, Gamma, PatchMethod, PngOptions, RenderOptions, RootMethods, StatsReport};
+
+mod signals;
 
 /// Delay before the progress bar appears: renders shorter than this show nothing.
 const PROGRESS_DELAY: Duration = Duration::from_secs(1);
@@ -115,7 +117,9 @@ fn parse_size(s: &str) -> Result<[u32; 2], String> {
             )),
         }
     };
-    Ok([side(w)?, side(h)?])
+    let size = [side(w)?, side(h)?];
+    render::scene::check_image_size(size)?;
+    Ok(size)
 }
 
 fn parse_bits(s: &str) -> Result<u8, String> {
@@ -158,7 +162,7 @@ impl RawArgs {
     }
 }
 
-fn run(args: &RawArgs) -> anyhow::Result<()> {
+fn run(args: &RawArgs, cancel: &Cancel) -> anyhow::Result<()> {
     let parse_start = Instant::now();
     let scene = render::scene::load(&args.scene)?;
     let parse = parse_start.elapsed();
@@ -185,9 +189,11 @@ fn run(args: &RawArgs) -> anyhow::Result<()> {
         }
         bar.set_position(u64::from(done));
     };
-    let mut report = render::render_scene(&scene, Some(&args.scene), &opts, &progress)
-        .with_context(|| format!("cannot render {}", args.scene.display()))?;
+    let report =
+        render::render_scene_with_cancel(&scene, Some(&args.scene), &opts, &progress, cancel)
+            .with_context(|| format!("cannot render {}", args.scene.display()));
     bar.finish_and_clear();
+    let mut report = report?;
     report.times.parse = parse;
 
     if args.stats {
@@ -213,10 +219,23 @@ fn main() -> ExitCode {
         return serve::main(std::env::args_os().skip(1));
     }
     let args = RawArgs::parse();
-    match run(&args) {
+    let cancel = Cancel::new();
+    signals::install(&cancel);
+    match run(&args, &cancel) {
         Ok(()) => ExitCode::SUCCESS,
+        Err(_) if cancel.is_cancelled() => {
+            let _ = writeln!(
+                std::io::stderr(),
+                "render: interrupted; no file was written"
+            );
+            ExitCode::from(signals::INTERRUPTED_EXIT)
+        }
         Err(e) => {
-            let _ = writeln!(std::io::stderr(), "render: error: {e:#}");
+            let _ = writeln!(
+                std::io::stderr(),
+                "render: error: {}",
+                render::scene::escape_message(&format!("{e:#}"))
+            );
             ExitCode::FAILURE
         }
     }

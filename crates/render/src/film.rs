@@ -1,12 +1,13 @@
 //! [`render`]: the pixel loop — camera rays, stratified supersampling, Stam's preview
 //! resolution, rayon over rows with per-thread statistics.
 
-use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
+use std::sync::atomic::{AtomicU32, Ordering};
 
 use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::camera::Camera;
+use crate::cancel::{Cancel, Cancelled};
 use crate::prepared::PreparedScene;
 use crate::scene::{CameraSpec, Rgb};
 use crate::stats::TraceStats;
@@ -75,21 +76,24 @@ pub fn render(
     settings: &RenderSettings,
     progress: &(dyn Fn(u32) + Sync),
 ) -> RenderOutput {
-    let never = AtomicBool::new(false);
-    let out = render_with_cancel(scene, camera, settings, progress, &never);
-    out.expect("a render that is never cancelled finishes")
+    match render_with_cancel(scene, camera, settings, progress, &Cancel::new()) {
+        Ok(out) => out,
+        Err(Cancelled) => unreachable!("a token nobody holds is never cancelled"),
+    }
 }
 
-/// [`render`] that stops early once `cancel` is set (by another thread, e.g. a server whose
-/// client asked for a new frame): every image band checks it before tracing, so the work left
-/// after the flag is set is at most the bands already started. `None` when cancelled.
+/// [`render`] that stops when `cancel` is cancelled: every worker checks the token before
+/// each cell, so the call returns within one cell's rays per thread.
+///
+/// # Errors
+/// [`Cancelled`] when the token was cancelled before the last cell was done.
 pub fn render_with_cancel(
     scene: &PreparedScene,
     camera: &CameraSpec,
     settings: &RenderSettings,
     progress: &(dyn Fn(u32) + Sync),
-    cancel: &AtomicBool,
-) -> Option<RenderOutput> {
+    cancel: &Cancel,
+) -> Result<RenderOutput, Cancelled> {
     let [width, height] = settings.size;
     let [rx, ry] = settings.resolution.map(|r| r.max(1));
     let camera = Camera::new(camera, width, height);
@@ -102,13 +106,13 @@ pub fn render_with_cancel(
 
     let render_band =
         |ws: &mut Workspace, cy: usize, band_px: &mut [[f32; 4]], band_depth: &mut [f32]| {
-            if cancel.load(Ordering::Relaxed) {
-                return;
-            }
             let y0 = cy * ry as usize;
             let rows = band_px.len() / w;
             let mut cx = 0;
             while cx * (rx as usize) < w {
+                if cancel.is_cancelled() {
+                    return;
+                }
                 let x0 = cx * rx as usize;
                 let cols = (rx as usize).min(w - x0);
                 let cell = [x0 as f64, y0 as f64, cols as f64, rows as f64];
@@ -165,13 +169,14 @@ pub fn render_with_cancel(
             })
     };
     stats.bvh = scene.aggregate.bvh_info();
+    cancel.check()?;
     let film = Film {
         width,
         height,
         pixels,
         depth: settings.depth.then_some(depth),
     };
-    (!cancel.load(Ordering::Relaxed)).then_some(RenderOutput { film, stats })
+    Ok(RenderOutput { film, stats })
 }
 
 /// Colour and coverage of one cell `[x, y, w, h]` (pixel units) from `n × n` stratified

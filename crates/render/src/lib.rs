@@ -78,13 +78,19 @@
 
 #![warn(unused_crate_dependencies)]
 
-// The allocation counter is a dev-dependency of the integration test `tests/bezier_no_alloc.rs`
-// only; the unit-test build of the library sees it too.
+// The allocation counter and the random generators are dev-dependencies of the integration
+// tests `tests/bezier_no_alloc.rs` and `tests/fuzz_scenes.rs` only; the unit-test build of the
+// library sees them too.
 #[cfg(test)]
 use allocation_counter as _;
+#[cfg(test)]
+use rand as _;
+#[cfg(test)]
+use rand_chacha as _;
 
 pub mod aggregate;
 mod camera;
+mod cancel;
 mod film;
 pub mod geometry;
 mod material;
@@ -104,13 +110,17 @@ mod workspace;
 pub use glam;
 
 pub use crate::camera::Camera;
+pub use crate::cancel::{Cancel, Cancelled};
 pub use crate::film::{Film, RenderOutput, RenderSettings, render, render_with_cancel};
 pub use crate::methods::{PatchMethod, RootMethods};
 pub use crate::options::RenderOptions;
 pub use crate::output::{
-    Gamma, OutputError, PngOptions, encode_png, read_pfm, write_atomically, write_pfm, write_png,
+    Gamma, OutputError, PendingOutputs, PngOptions, abandon_pending_outputs, encode_png, read_pfm,
+    write_atomically, write_pfm, write_png,
 };
-pub use crate::pipeline::{RenderError, RenderReport, prepare_render, render_scene};
+pub use crate::pipeline::{
+    RenderError, RenderReport, prepare_render, render_scene, render_scene_with_cancel,
+};
 pub use crate::prepared::{PreparedScene, Primitive};
 pub use crate::scene::Scene;
 pub use crate::stats::{HIST_BINS, KindStats, PatchStats, PhaseTimes, StatsReport, TraceStats};

@@ -1,9 +1,11 @@
 //! Image files: PNG (8 or 16 bits, gamma-encoded, optional alpha) and PFM depth maps, both
 //! written atomically (temporary file in the same directory, then rename).
 
-use std::fs::File;
+use std::fs::{File, OpenOptions};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Mutex, PoisonError};
 
 use image::ImageEncoder;
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
@@ -105,45 +107,385 @@ pub enum OutputError {
     /// The film has no depth channel.
     #[error("the render kept no depth values")]
     NoDepth,
+    /// An output names the same file as an input or another output.
+    #[error("the output {} is the same file as the {what} {}", output.display(), other.display())]
+    SameFile {
+        /// The output.
+        output: PathBuf,
+        /// The input or earlier output it coincides with.
+        other: PathBuf,
+        /// "input" or "output".
+        what: &'static str,
+    },
+    /// [`PendingOutputs::commit`] before every output was written.
+    #[error("{} was not written", .0.display())]
+    NotWritten(PathBuf),
+    /// The outputs were abandoned by [`abandon_pending_outputs`] (a signal).
+    #[error("the outputs were abandoned (interrupted)")]
+    Abandoned,
 }
 
-/// Writes `path` atomically: `write` fills a temporary file next to it, which then replaces
-/// `path` by a rename. On any failure the temporary file is removed and `path` is untouched.
-pub fn write_atomically(
-    path: &Path,
-    write: impl FnOnce(&mut BufWriter<File>) -> Result<(), OutputError>,
-) -> Result<(), OutputError> {
-    let io = |source| OutputError::Io {
+/// The most symbolic links followed when resolving an output path (Linux's `MAXSYMLINKS`):
+/// a longer chain is a loop for every practical purpose and is refused.
+const MAX_SYMLINKS: usize = 40;
+
+/// Where an output's bytes go once the render is done.
+#[derive(Debug)]
+enum Sink {
+    /// A regular file (existing or not): bytes go to `tmp` in the same directory as `dest`,
+    /// which the commit renames onto `dest`.
+    Replace {
+        /// The temporary, created (empty) by [`PendingOutputs::prepare`].
+        tmp: PathBuf,
+        /// The open temporary.
+        file: Option<File>,
+        /// The destination after following symbolic links.
+        dest: PathBuf,
+    },
+    /// A device, FIFO or socket (`/dev/null`, `/dev/stdout`, a named pipe): it cannot be
+    /// replaced, so the commit opens it and writes the bytes kept in memory.
+    Special {
+        /// The node, after following symbolic links.
+        node: PathBuf,
+        /// The encoded bytes.
+        bytes: Vec<u8>,
+    },
+}
+
+/// One output file.
+#[derive(Debug)]
+struct Pending {
+    /// The path as the caller named it (for messages).
+    path: PathBuf,
+    sink: Sink,
+    written: bool,
+}
+
+/// Output files of one render, validated before it starts and committed together after.
+///
+/// [`PendingOutputs::prepare`] checks every path up front — no two outputs and no input name
+/// the same file (compared after following symbolic links, and by device and inode on Unix),
+/// the directory exists, and a temporary file can be created there — so a run that would
+/// fail to write its results fails before tracing a ray. [`PendingOutputs::commit`] renames
+/// all temporaries onto their destinations only when every output was written: a failed run
+/// leaves every existing file as it was.
+///
+/// - A symbolic link is followed: its target is replaced (atomically, by a temporary in the
+///   target's directory), the link stays a link.
+/// - A device, FIFO or socket is written directly at commit time and never replaced.
+/// - Dropping a `PendingOutputs` without committing removes its temporaries, and
+///   [`abandon_pending_outputs`] removes every process's pending temporaries from a signal
+///   handler. Only `SIGKILL` or a crash can leave an (empty or partial) `.NAME.PID.N.tmp`.
+#[derive(Debug)]
+pub struct PendingOutputs {
+    outputs: Vec<Pending>,
+}
+
+/// Temporaries not yet committed or removed, for [`abandon_pending_outputs`]; `closed` once
+/// that was called, after which nothing new may be created or committed.
+struct Registry {
+    files: Vec<PathBuf>,
+    closed: bool,
+}
+
+static REGISTRY: Mutex<Registry> = Mutex::new(Registry {
+    files: Vec::new(),
+    closed: false,
+});
+
+/// Distinguishes temporaries of the same name created by one process (several renders in one
+/// server process).
+static TMP_COUNTER: AtomicU64 = AtomicU64::new(0);
+
+fn registry() -> std::sync::MutexGuard<'static, Registry> {
+    // The registry's data stays consistent even if a thread panicked holding the lock.
+    REGISTRY.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// Removes the temporary file of every output not yet committed, in every thread, and makes
+/// every later [`PendingOutputs::prepare`] and [`PendingOutputs::commit`] fail with
+/// [`OutputError::Abandoned`]. For a signal handler (SIGINT, SIGTERM) before the process
+/// exits; a commit in progress finishes first (it holds the same lock), so each output is
+/// either fully replaced or untouched.
+pub fn abandon_pending_outputs() {
+    let mut reg = registry();
+    reg.closed = true;
+    for f in reg.files.drain(..) {
+        let _ = std::fs::remove_file(f);
+    }
+}
+
+fn io_error(path: &Path, source: std::io::Error) -> OutputError {
+    OutputError::Io {
         path: path.to_path_buf(),
         source,
-    };
-    let dir = match path.parent() {
+    }
+}
+
+fn invalid(path: &Path, reason: &str) -> OutputError {
+    io_error(
+        path,
+        std::io::Error::new(std::io::ErrorKind::InvalidInput, reason.to_string()),
+    )
+}
+
+/// Follows symbolic links from `path` to the node they finally name (which may not exist).
+fn follow_links(path: &Path) -> Result<PathBuf, OutputError> {
+    let mut p = path.to_path_buf();
+    for _ in 0..MAX_SYMLINKS {
+        match std::fs::symlink_metadata(&p) {
+            Ok(m) if m.file_type().is_symlink() => {
+                let target = std::fs::read_link(&p).map_err(|e| io_error(path, e))?;
+                p = match p.parent() {
+                    Some(dir) if target.is_relative() => dir.join(target),
+                    _ => target,
+                };
+            }
+            _ => return Ok(p),
+        }
+    }
+    Err(invalid(path, "too many levels of symbolic links"))
+}
+
+/// The directory a file lives in (`.` for a bare name).
+fn directory_of(path: &Path) -> PathBuf {
+    match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
-    };
-    let name = path.file_name().ok_or_else(|| {
-        io(std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
-            "the path names no file",
-        ))
-    })?;
-    let tmp = dir.join(format!(
-        ".{}.{}.tmp",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
-    let result = (|| {
-        let file = File::create(&tmp).map_err(io)?;
-        let mut w = BufWriter::new(file);
-        write(&mut w)?;
-        let file = w.into_inner().map_err(|e| io(e.into_error()))?;
-        file.sync_all().map_err(io)?;
-        std::fs::rename(&tmp, path).map_err(io)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
     }
-    result
+}
+
+/// What makes two paths the same file: the canonical path (of the file, or of its directory
+/// joined with its name when it does not exist yet), and on Unix the device and inode of an
+/// existing file, which also catches hard links.
+#[derive(Debug, PartialEq)]
+struct Identity {
+    canonical: Option<PathBuf>,
+    inode: Option<(u64, u64)>,
+}
+
+impl Identity {
+    fn of(path: &Path) -> Identity {
+        let canonical = std::fs::canonicalize(path).ok().or_else(|| {
+            let dir = std::fs::canonicalize(directory_of(path)).ok()?;
+            Some(dir.join(path.file_name()?))
+        });
+        Identity {
+            canonical,
+            inode: inode(path),
+        }
+    }
+
+    fn same(&self, other: &Identity) -> bool {
+        match (self.inode, other.inode) {
+            (Some(a), Some(b)) => a == b,
+            _ => self.canonical.is_some() && self.canonical == other.canonical,
+        }
+    }
+}
+
+#[cfg(unix)]
+fn inode(path: &Path) -> Option<(u64, u64)> {
+    use std::os::unix::fs::MetadataExt;
+    std::fs::metadata(path).ok().map(|m| (m.dev(), m.ino()))
+}
+
+#[cfg(not(unix))]
+fn inode(_path: &Path) -> Option<(u64, u64)> {
+    None
+}
+
+impl PendingOutputs {
+    /// Checks `outputs` (in the order their bytes will be given to [`PendingOutputs::write`])
+    /// against each other and against `inputs` (files the render reads, such as the scene),
+    /// and creates a temporary file for each regular output.
+    ///
+    /// # Errors
+    /// [`OutputError::SameFile`] when two outputs, or an output and an input, are one file;
+    /// [`OutputError::Io`] when a directory is missing, a path names a directory, a link
+    /// chain loops, or a temporary cannot be created (no write permission, read-only file
+    /// system); [`OutputError::Abandoned`] after [`abandon_pending_outputs`].
+    pub fn prepare(outputs: &[&Path], inputs: &[&Path]) -> Result<PendingOutputs, OutputError> {
+        let ids: Vec<Identity> = outputs.iter().map(|p| Identity::of(p)).collect();
+        for (i, (path, id)) in outputs.iter().zip(&ids).enumerate() {
+            if let Some(input) = inputs.iter().find(|q| id.same(&Identity::of(q))) {
+                return Err(OutputError::SameFile {
+                    output: path.to_path_buf(),
+                    other: input.to_path_buf(),
+                    what: "input",
+                });
+            }
+            if let Some(j) = (0..i).find(|&j| ids[j].same(id)) {
+                return Err(OutputError::SameFile {
+                    output: path.to_path_buf(),
+                    other: outputs[j].to_path_buf(),
+                    what: "output",
+                });
+            }
+        }
+        let mut pending = PendingOutputs {
+            outputs: Vec::with_capacity(outputs.len()),
+        };
+        for path in outputs {
+            let sink = Self::sink(path)?;
+            pending.outputs.push(Pending {
+                path: path.to_path_buf(),
+                sink,
+                written: false,
+            });
+        }
+        Ok(pending)
+    }
+
+    fn sink(path: &Path) -> Result<Sink, OutputError> {
+        let dest = follow_links(path)?;
+        match std::fs::metadata(&dest) {
+            Ok(m) if m.is_dir() => return Err(invalid(path, "is a directory")),
+            Ok(m) if !m.is_file() => {
+                if m.permissions().readonly() {
+                    return Err(invalid(path, "the device or FIFO is not writable"));
+                }
+                return Ok(Sink::Special {
+                    node: dest,
+                    bytes: Vec::new(),
+                });
+            }
+            Ok(_) => {}
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+            Err(e) => return Err(io_error(path, e)),
+        }
+        let name = dest
+            .file_name()
+            .ok_or_else(|| invalid(path, "the path names no file"))?;
+        let dir = directory_of(&dest);
+        match std::fs::metadata(&dir) {
+            Ok(m) if m.is_dir() => {}
+            Ok(_) => return Err(invalid(path, "its directory is not a directory")),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                return Err(invalid(path, "its directory does not exist"));
+            }
+            Err(e) => return Err(io_error(path, e)),
+        }
+        let n = TMP_COUNTER.fetch_add(1, Ordering::Relaxed);
+        let tmp = dir.join(format!(
+            ".{}.{}.{n}.tmp",
+            name.to_string_lossy(),
+            std::process::id()
+        ));
+        let mut reg = registry();
+        if reg.closed {
+            return Err(OutputError::Abandoned);
+        }
+        // `create_new`: never truncate a file that happens to have the temporary's name.
+        let file = OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)
+            .map_err(|e| io_error(path, e))?;
+        reg.files.push(tmp.clone());
+        Ok(Sink::Replace {
+            tmp,
+            file: Some(file),
+            dest,
+        })
+    }
+
+    /// Fills output `index` (its position in `prepare`'s list) through `write`.
+    ///
+    /// # Errors
+    /// [`OutputError::Io`] when writing fails, or `write`'s own error.
+    ///
+    /// # Panics
+    /// If `index` is not below the number of outputs prepared.
+    pub fn write(
+        &mut self,
+        index: usize,
+        write: impl FnOnce(&mut dyn Write) -> Result<(), OutputError>,
+    ) -> Result<(), OutputError> {
+        let out = &mut self.outputs[index];
+        let path = out.path.clone();
+        match &mut out.sink {
+            Sink::Replace { file, .. } => {
+                let file = file.as_mut().ok_or(OutputError::Abandoned)?;
+                let mut w = BufWriter::new(file);
+                write(&mut w)?;
+                let file = w
+                    .into_inner()
+                    .map_err(|e| io_error(&path, e.into_error()))?;
+                file.sync_all().map_err(|e| io_error(&path, e))?;
+            }
+            Sink::Special { bytes, .. } => {
+                bytes.clear();
+                write(bytes)?;
+            }
+        }
+        out.written = true;
+        Ok(())
+    }
+
+    /// Replaces every destination by its temporary and writes the special files, once every
+    /// output was written.
+    ///
+    /// # Errors
+    /// [`OutputError::NotWritten`] if an output was not written (nothing is replaced),
+    /// [`OutputError::Abandoned`] after [`abandon_pending_outputs`], [`OutputError::Io`]
+    /// when a rename or a device write fails (the outputs before it are already replaced:
+    /// a rename within one directory fails only for reasons outside the program, such as a
+    /// file system gone read-only).
+    pub fn commit(mut self) -> Result<(), OutputError> {
+        if let Some(o) = self.outputs.iter().find(|o| !o.written) {
+            return Err(OutputError::NotWritten(o.path.clone()));
+        }
+        let mut reg = registry();
+        if reg.closed {
+            return Err(OutputError::Abandoned);
+        }
+        for out in &mut self.outputs {
+            match &mut out.sink {
+                Sink::Replace { tmp, file, dest } => {
+                    drop(file.take());
+                    std::fs::rename(&*tmp, &*dest).map_err(|e| io_error(&out.path, e))?;
+                    reg.files.retain(|f| f != tmp);
+                }
+                Sink::Special { node, bytes } => {
+                    let mut f = OpenOptions::new()
+                        .write(true)
+                        .open(&*node)
+                        .map_err(|e| io_error(&out.path, e))?;
+                    f.write_all(bytes).map_err(|e| io_error(&out.path, e))?;
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Drop for PendingOutputs {
+    /// Removes the temporaries that were not committed.
+    fn drop(&mut self) {
+        let mut reg = registry();
+        for out in &mut self.outputs {
+            if let Sink::Replace { tmp, file, .. } = &mut out.sink
+                && (file.take().is_some() || reg.files.contains(tmp))
+            {
+                let _ = std::fs::remove_file(&*tmp);
+                reg.files.retain(|f| f != tmp);
+            }
+        }
+    }
+}
+
+/// Writes `path` atomically: `write` fills a temporary file next to it (next to a symbolic
+/// link's target), which then replaces it by a rename; a device or FIFO is written directly.
+/// On any failure the temporary file is removed and `path` is untouched. One output of
+/// [`PendingOutputs`].
+pub fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> Result<(), OutputError>,
+) -> Result<(), OutputError> {
+    let mut pending = PendingOutputs::prepare(&[path], &[])?;
+    pending.write(0, write)?;
+    pending.commit()
 }
 
 /// Quantises encoded channel values to 8 bits through the decision thresholds of the
@@ -182,7 +524,7 @@ pub fn write_png(film: &Film, path: &Path, opts: &PngOptions) -> Result<(), Outp
 /// the destination in errors). The `render serve` explorer sends these bytes.
 pub fn encode_png(
     film: &Film,
-    out: &mut impl Write,
+    out: &mut dyn Write,
     opts: &PngOptions,
     path: &Path,
 ) -> Result<(), OutputError> {
@@ -230,21 +572,24 @@ pub fn encode_png(
 /// Writes the film's depths as a single-channel PFM (`Pf`, little-endian, rows bottom to top
 /// as the format requires; `+∞` for a miss), atomically.
 pub fn write_pfm(film: &Film, path: &Path) -> Result<(), OutputError> {
+    write_atomically(path, |out| encode_pfm(film, path, out))
+}
+
+/// Encodes the film's depths as PFM into `out`; `path` names it in errors.
+pub(crate) fn encode_pfm(film: &Film, path: &Path, out: &mut dyn Write) -> Result<(), OutputError> {
     let depth = film.depth.as_ref().ok_or(OutputError::NoDepth)?;
     let (w, h) = (film.width as usize, film.height as usize);
     let io = |source| OutputError::Io {
         path: path.to_path_buf(),
         source,
     };
-    write_atomically(path, |out| {
-        write!(out, "Pf\n{w} {h}\n-1.0\n").map_err(io)?;
-        for row in (0..h).rev() {
-            for d in &depth[row * w..(row + 1) * w] {
-                out.write_all(&d.to_le_bytes()).map_err(io)?;
-            }
+    write!(out, "Pf\n{w} {h}\n-1.0\n").map_err(io)?;
+    for row in (0..h).rev() {
+        for d in &depth[row * w..(row + 1) * w] {
+            out.write_all(&d.to_le_bytes()).map_err(io)?;
         }
-        Ok(())
-    })
+    }
+    Ok(())
 }
 
 /// Reads a single-channel PFM written by [`write_pfm`]: `(width, height, rows top to bottom)`.

@@ -3,11 +3,12 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use crate::film::{RenderOutput, RenderSettings, render};
+use crate::cancel::{Cancel, Cancelled};
+use crate::film::{RenderOutput, RenderSettings, render_with_cancel};
 use crate::options::RenderOptions;
-use crate::output::{OutputError, write_pfm, write_png};
+use crate::output::{OutputError, PendingOutputs, encode_pfm, encode_png};
 use crate::prepared::PreparedScene;
-use crate::scene::{Scene, SceneInvalid};
+use crate::scene::{Scene, SceneInvalid, check_image_size};
 use crate::stats::PhaseTimes;
 
 /// Why a render failed.
@@ -20,9 +21,12 @@ pub enum RenderError {
     /// An option is out of range.
     #[error("{0}")]
     Option(String),
-    /// Writing an output file failed.
+    /// Writing an output file failed, or an output path was refused before rendering.
     #[error(transparent)]
     Output(#[from] OutputError),
+    /// The render was stopped through its [`Cancel`] token; no output was written.
+    #[error(transparent)]
+    Cancelled(#[from] Cancelled),
     /// The worker pool could not start.
     #[error("cannot start {threads} worker threads")]
     Threads {
@@ -47,25 +51,20 @@ pub struct RenderReport {
     pub threads: usize,
 }
 
-/// Checks `opts` against `scene` and builds what [`render`] takes: the prepared scene (with
-/// `opts`' patch method and root finder) and the settings (size, preview resolution, samples,
-/// depth). [`render_scene`] renders exactly this; other front ends (the `render serve`
-/// explorer) call it to get the same pixels without writing files.
+/// Checks `opts` against `scene` and builds what [`render_with_cancel`] takes: the prepared
+/// scene (with `opts`' patch method and root finder) and the settings (size, preview
+/// resolution, samples, depth). [`render_scene`] renders exactly this; other front ends (the
+/// `render serve` explorer) call it to get the same pixels without writing files.
 ///
 /// # Errors
-/// [`RenderError::Option`] for a zero size or zero samples, [`RenderError::Invalid`] when
-/// the scene breaks an invariant.
+/// [`RenderError::Option`] for a size beyond the pixel limit or zero samples,
+/// [`RenderError::Invalid`] when the scene breaks an invariant.
 pub fn prepare_render(
     scene: &Scene,
     opts: &RenderOptions,
 ) -> Result<(PreparedScene, RenderSettings), RenderError> {
     let size = opts.image_size(scene);
-    if size.contains(&0) {
-        return Err(RenderError::Option(format!(
-            "image size {}x{} must be positive",
-            size[0], size[1]
-        )));
-    }
+    check_image_size(size).map_err(RenderError::Option)?;
     if opts.samples == 0 {
         return Err(RenderError::Option("--samples must be at least 1".into()));
     }
@@ -80,14 +79,37 @@ pub fn prepare_render(
 }
 
 /// Renders `scene` with `opts` and writes the PNG (and the PFM depth map when asked).
-/// `scene_path` only names the default output file. `progress` receives the number of
-/// finished rows and the total.
+/// `scene_path` names the default output file, and no output may overwrite it.
+/// `progress` receives the number of finished rows and the total.
+///
+/// Every output path is checked before the render starts (see [`PendingOutputs`]), and the
+/// files are replaced only when all of them were written: a failed run changes no file.
 pub fn render_scene(
     scene: &Scene,
     scene_path: Option<&Path>,
     opts: &RenderOptions,
     progress: &(dyn Fn(u32, u32) + Sync),
 ) -> Result<RenderReport, RenderError> {
+    render_scene_with_cancel(scene, scene_path, opts, progress, &Cancel::new())
+}
+
+/// [`render_scene`] that stops, writing nothing, when `cancel` is cancelled (see
+/// [`render_with_cancel`]).
+pub fn render_scene_with_cancel(
+    scene: &Scene,
+    scene_path: Option<&Path>,
+    opts: &RenderOptions,
+    progress: &(dyn Fn(u32, u32) + Sync),
+    cancel: &Cancel,
+) -> Result<RenderReport, RenderError> {
+    if !matches!(opts.png.bits, 8 | 16) {
+        return Err(OutputError::BitDepth(opts.png.bits).into());
+    }
+    let png_path = opts.output_path(scene, scene_path);
+    let mut targets = vec![png_path.as_path()];
+    targets.extend(opts.depth.as_deref());
+    let inputs: Vec<&Path> = scene_path.into_iter().collect();
+    let mut outputs = PendingOutputs::prepare(&targets, &inputs)?;
     let setup_start = Instant::now();
     let (prepared, settings) = prepare_render(scene, opts)?;
     let size = settings.size;
@@ -105,18 +127,22 @@ pub fn render_scene(
     let trace_start = Instant::now();
     let total = size[1];
     let output = pool.install(|| {
-        render(&prepared, &scene.camera, &settings, &|done| {
-            progress(done, total)
-        })
-    });
+        render_with_cancel(
+            &prepared,
+            &scene.camera,
+            &settings,
+            &|done| progress(done, total),
+            cancel,
+        )
+    })?;
     let trace = trace_start.elapsed();
 
     let write_start = Instant::now();
-    let png_path = opts.output_path(scene, scene_path);
-    write_png(&output.film, &png_path, &opts.png)?;
+    outputs.write(0, |out| encode_png(&output.film, out, &opts.png, &png_path))?;
     if let Some(depth_path) = &opts.depth {
-        write_pfm(&output.film, depth_path)?;
+        outputs.write(1, |out| encode_pfm(&output.film, depth_path, out))?;
     }
+    outputs.commit()?;
     let write = write_start.elapsed();
     Ok(RenderReport {
         output,

@@ -36,6 +36,18 @@ fn specular_power(x: f64, n: f64) -> f64 {
     }
 }
 
+/// Adaptive depth control (POV-Ray's `adc_bailout`, default 1/255): a secondary ray whose
+/// weight — the product of the `k_s` and `k_t` factors from the eye to it — is below this is
+/// not traced.
+///
+/// Derivation: a traced colour is clamped to at most 1 per channel (Stam's `Intensity`), so
+/// such a ray changes its pixel's linear value by less than `ADC_BAILOUT`; with it the ray
+/// tree of a transparent, reflective scene stops growing after `log(ADC_BAILOUT)/log(k)`
+/// levels whatever `MaxDepth` says (`k = max(k_s, k_t)`; 8 levels at `k = 0.5`), instead of
+/// doubling per level up to `MaxDepth`. The value is POV-Ray's default, half an 8-bit step
+/// in linear light; the golden images of `scenes/` are unchanged by it.
+pub const ADC_BAILOUT: f64 = 1.0 / 255.0;
+
 /// The ray parameter range of a new ray: open at 0. Self-intersection is prevented by moving
 /// the origin off the surface by the hit point's error bound
 /// ([`offset_ray_origin`]), not by a fixed epsilon.
@@ -91,14 +103,14 @@ pub fn occluded(scene: &PreparedScene, ray: &Ray, t_range: Range<f64>, ws: &mut 
     blocked
 }
 
-/// Traces a camera ray (depth 1).
+/// Traces a camera ray (depth 1, weight 1).
 pub fn trace_primary(scene: &PreparedScene, ray: &Ray, ws: &mut Workspace) -> PrimarySample {
     ws.stats.primary_rays += 1;
     match nearest_hit(scene, ray, SPAWN_RANGE, ws) {
         Some((i, hit)) => {
             let depth = hit.t * ray.dir.length();
             PrimarySample {
-                color: shade(scene, ray, i, &hit, 1, ws),
+                color: shade(scene, ray, i, &hit, Branch::PRIMARY, ws),
                 depth,
             }
         }
@@ -109,10 +121,33 @@ pub fn trace_primary(scene: &PreparedScene, ray: &Ray, ws: &mut Workspace) -> Pr
     }
 }
 
-/// Stam's `TraceRay` for a secondary ray at recursion depth `depth` (≥ 2).
-fn trace(scene: &PreparedScene, ray: &Ray, depth: u32, ws: &mut Workspace) -> Rgb {
+/// Where a ray is in the ray tree: its recursion depth (1 for a camera ray) and its weight,
+/// the factor by which its colour enters the pixel.
+#[derive(Clone, Copy, Debug)]
+struct Branch {
+    depth: u32,
+    weight: f64,
+}
+
+impl Branch {
+    const PRIMARY: Branch = Branch {
+        depth: 1,
+        weight: 1.0,
+    };
+
+    /// The child ray carrying `factor` (`k_s`, `k_t` or their sum).
+    fn child(self, factor: f64) -> Branch {
+        Branch {
+            depth: self.depth + 1,
+            weight: self.weight * factor,
+        }
+    }
+}
+
+/// Stam's `TraceRay` for a secondary ray (depth ≥ 2).
+fn trace(scene: &PreparedScene, ray: &Ray, branch: Branch, ws: &mut Workspace) -> Rgb {
     match nearest_hit(scene, ray, SPAWN_RANGE, ws) {
-        Some((i, hit)) => shade(scene, ray, i, &hit, depth, ws),
+        Some((i, hit)) => shade(scene, ray, i, &hit, branch, ws),
         None => scene.world.background,
     }
 }
@@ -123,9 +158,10 @@ fn shade(
     ray: &Ray,
     index: usize,
     hit: &Hit,
-    depth: u32,
+    branch: Branch,
     ws: &mut Workspace,
 ) -> Rgb {
+    let depth = branch.depth;
     let prim = &scene.primitives[index];
     let m = &prim.material;
     if m.illumination == Illumination::Blackbody {
@@ -225,9 +261,14 @@ fn shade(
             let q = 1.0 - (1.0 - cos_alpha * cos_alpha) / (kn * kn);
             if q >= 0.0 {
                 let dir = v / kn + n * (-cos_alpha / kn - q.sqrt());
-                ws.stats.refracted_rays += 1;
                 let origin = offset_ray_origin(p, g.p_err, n, dir);
-                color += trace(scene, &Ray::new(origin, dir), depth + 1, ws) * m.kt;
+                if branch.weight * m.kt < ADC_BAILOUT {
+                    ws.stats.secondary_skipped_weight += 1;
+                } else {
+                    ws.stats.refracted_rays += 1;
+                    let ray = Ray::new(origin, dir);
+                    color += trace(scene, &ray, branch.child(m.kt), ws) * m.kt;
+                }
             } else {
                 ws.stats.total_internal_reflections += 1;
                 if mirror {
@@ -237,7 +278,9 @@ fn shade(
             }
         }
     }
-    if reflect_weight > 0.0 {
+    if reflect_weight > 0.0 && branch.weight * reflect_weight < ADC_BAILOUT {
+        ws.stats.secondary_skipped_weight += 1;
+    } else if reflect_weight > 0.0 {
         // One ray, counted once: reflected when it carries k_s, else transmitted (TIR).
         if mirror {
             ws.stats.reflected_rays += 1;
@@ -245,7 +288,8 @@ fn shade(
             ws.stats.refracted_rays += 1;
         }
         let origin = offset_ray_origin(p, g.p_err, n, reflect_dir);
-        color += trace(scene, &Ray::new(origin, reflect_dir), depth + 1, ws) * reflect_weight;
+        let ray = Ray::new(origin, reflect_dir);
+        color += trace(scene, &ray, branch.child(reflect_weight), ws) * reflect_weight;
     }
 
     // Stam clamps each intensity to at most 1 (end of `Intensity`).

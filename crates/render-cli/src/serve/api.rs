@@ -13,7 +13,6 @@
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
@@ -26,7 +25,7 @@ use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use base64::Engine as _;
 use render::scene::{SceneError, build, parse_syntax};
-use render::{PhaseTimes, RenderOptions, StatsReport};
+use render::{Cancel, PhaseTimes, RenderOptions, StatsReport};
 use serde::{Deserialize, Serialize};
 use serde_json::json;
 
@@ -53,7 +52,7 @@ pub(crate) struct AppState {
     initial: Option<(String, String)>,
     pool: rayon::ThreadPool,
     slots: Arc<tokio::sync::Semaphore>,
-    sessions: Mutex<HashMap<String, Arc<AtomicBool>>>,
+    sessions: Mutex<HashMap<String, Cancel>>,
 }
 
 impl AppState {
@@ -75,29 +74,26 @@ impl AppState {
     }
 
     /// Registers a new render for `session`, cancelling the one in flight.
-    fn begin(&self, session: &str) -> Arc<AtomicBool> {
-        let flag = Arc::new(AtomicBool::new(false));
+    fn begin(&self, session: &str) -> Cancel {
+        let flag = Cancel::new();
         let mut sessions = self.sessions.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(old) = sessions.insert(session.to_owned(), Arc::clone(&flag)) {
-            old.store(true, Ordering::Relaxed);
+        if let Some(old) = sessions.insert(session.to_owned(), flag.clone()) {
+            old.cancel();
         }
         flag
     }
 
     /// Forgets `session`'s render if `flag` is still its latest.
-    fn end(&self, session: &str, flag: &Arc<AtomicBool>) {
+    fn end(&self, session: &str, flag: &Cancel) {
         let mut sessions = self.sessions.lock().unwrap_or_else(|e| e.into_inner());
-        if sessions.get(session).is_some_and(|f| Arc::ptr_eq(f, flag)) {
+        if sessions.get(session).is_some_and(|f| f.is_same(flag)) {
             sessions.remove(session);
         }
     }
 
     fn cancel(&self, session: &str) -> bool {
         let sessions = self.sessions.lock().unwrap_or_else(|e| e.into_inner());
-        sessions
-            .get(session)
-            .inspect(|f| f.store(true, Ordering::Relaxed))
-            .is_some()
+        sessions.get(session).inspect(|f| f.cancel()).is_some()
     }
 }
 
@@ -311,9 +307,9 @@ fn ms(d: Duration) -> f64 {
 fn render_job(
     state: &AppState,
     req: &RenderRequest,
-    cancel: &AtomicBool,
+    cancel: &Cancel,
 ) -> Result<Option<Rendered>, Failure> {
-    if cancel.load(Ordering::Relaxed) {
+    if cancel.is_cancelled() {
         return Ok(None);
     }
     let parse_start = Instant::now();
@@ -396,7 +392,7 @@ fn render_job(
     let setup = setup_start.elapsed();
     let trace_start = Instant::now();
     let output = state.pool.install(|| {
-        render::render_with_cancel(&prepared, &scene.camera, &settings, &|_| {}, cancel)
+        render::render_with_cancel(&prepared, &scene.camera, &settings, &|_| {}, cancel).ok()
     });
     let Some(output) = output else {
         return Ok(None);
@@ -445,11 +441,11 @@ fn render_job(
 }
 
 /// Sets a render's cancel flag when the request is dropped (the client went away) or done.
-struct CancelOnDrop(Arc<AtomicBool>);
+struct CancelOnDrop(Cancel);
 
 impl Drop for CancelOnDrop {
     fn drop(&mut self) {
-        self.0.store(true, Ordering::Relaxed);
+        self.0.cancel();
     }
 }
 
@@ -463,14 +459,14 @@ async fn render_request(state: Arc<AppState>, req: RenderRequest) -> Result<Rend
     }
     let session = req.session.clone();
     let flag = state.begin(&session);
-    let _guard = CancelOnDrop(Arc::clone(&flag));
+    let _guard = CancelOnDrop(flag.clone());
     let result = async {
         let permit = Arc::clone(&state.slots)
             .acquire_owned()
             .await
             .map_err(|_| Failure::new(StatusCode::SERVICE_UNAVAILABLE, "the server is stopping"))?;
         let job = {
-            let (state, flag) = (Arc::clone(&state), Arc::clone(&flag));
+            let (state, flag) = (Arc::clone(&state), flag.clone());
             tokio::task::spawn_blocking(move || {
                 let _permit = permit;
                 render_job(&state, &req, &flag)
@@ -481,7 +477,7 @@ async fn render_request(state: Arc<AppState>, req: RenderRequest) -> Result<Rend
         let joined = match tokio::time::timeout(limit, &mut job).await {
             Ok(j) => j,
             Err(_) => {
-                flag.store(true, Ordering::Relaxed);
+                flag.cancel();
                 let _ = job.await;
                 return Err(Failure::new(
                     StatusCode::SERVICE_UNAVAILABLE,

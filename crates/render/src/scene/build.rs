@@ -15,10 +15,15 @@ use super::bpt::{parse_bpt, parse_control_points};
 use super::control_net::ControlNet;
 use super::error::{ErrorKind, SceneError, Span};
 use super::expr::{Constants, eval_const, expand};
+use super::lexer::end_position;
+use super::model::MAX_SUPERQUADRIC_POWER;
 use super::model::{
     BoundingVolume, CameraSpec, CheckerTexture, Illumination, ImageTexture, Light, LookAtCamera,
     Material, Object, ObjectTransform, Rgb, Scene, SceneInvalid, ShapeKind, StamCamera, Texture,
     Viewport, World,
+};
+use super::source::{
+    MAX_CONTROL_POINT_BYTES, MAX_SCENE_BYTES, MAX_TEXTURE_BYTES, MAX_TEXTURE_TEXELS, read_bounded,
 };
 use super::syntax::{
     Block, Command, Entry, Key, SceneAst, ShapeType, TextureType, Value, parse_syntax,
@@ -31,6 +36,35 @@ use crate::trivariate::Poly3;
 /// Derivation: 2¹⁶ is beyond any display or print use, and keeps `width · height · 3` bytes
 /// of a texture inside `u64` and the image crate's limits.
 pub const MAX_IMAGE_SIDE: u32 = 1 << 16;
+
+/// The most pixels an image may have, from `--size` or `#viewport Size`: 2²⁶, e.g.
+/// 8192 × 8192.
+///
+/// Derivation: memory. A render keeps 16 bytes per pixel of film (linear RGBA `f32`), 4 of
+/// depth with `--depth`, and the PNG encoder's input of up to 8 (16-bit RGBA): at most 28
+/// bytes per pixel, 1.75 GiB at the limit, which a workstation has. Twice the limit would
+/// not fit a machine of 4 GiB.
+pub const MAX_IMAGE_PIXELS: u64 = 1 << 26;
+
+/// Checks an image size against [`MAX_IMAGE_SIDE`] and [`MAX_IMAGE_PIXELS`].
+///
+/// # Errors
+/// A message naming the size and the limit it breaks.
+pub fn check_image_size([w, h]: [u32; 2]) -> Result<(), String> {
+    if w == 0 || h == 0 || w > MAX_IMAGE_SIDE || h > MAX_IMAGE_SIDE {
+        return Err(format!(
+            "image size {w}x{h}: each side must be from 1 to {MAX_IMAGE_SIDE} pixels"
+        ));
+    }
+    let pixels = u64::from(w) * u64::from(h);
+    if pixels > MAX_IMAGE_PIXELS {
+        return Err(format!(
+            "image size {w}x{h} has {pixels} pixels, more than the limit of {MAX_IMAGE_PIXELS} \
+             (8192x8192; a render needs up to 28 bytes per pixel)"
+        ));
+    }
+    Ok(())
+}
 
 /// The largest `MaxDepth`: far beyond any visible contribution (each bounce multiplies by
 /// `k_s` or `k_t` < 1) and small enough that recursion cannot exhaust the stack.
@@ -72,8 +106,9 @@ pub fn parse(text: &str, file: &Path) -> Result<Scene, SceneError> {
 /// are read by [`parse_nff`](super::parse_nff) into the same model.
 ///
 /// # Errors
-/// [`SceneError::Read`] when the file cannot be read (or is not UTF-8), otherwise as
-/// [`parse`].
+/// [`SceneError::Read`] when the file cannot be read, is not a regular file (a FIFO or a
+/// device is refused: it could block or never end) or is longer than [`MAX_SCENE_BYTES`];
+/// [`ErrorKind::InvalidUtf8`] at the first byte that is not UTF-8; otherwise as [`parse`].
 ///
 /// # Examples
 /// ```no_run
@@ -82,14 +117,25 @@ pub fn parse(text: &str, file: &Path) -> Result<Scene, SceneError> {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+    let bytes = read_bounded(path, MAX_SCENE_BYTES).map_err(|source| SceneError::Read {
         path: path.to_owned(),
         source,
     })?;
-    if super::nff::is_nff(path, &text) {
-        return super::nff::parse_nff(&text, path);
+    let text = std::str::from_utf8(&bytes).map_err(|e| {
+        let valid = &bytes[..e.valid_up_to()];
+        // The prefix is valid UTF-8 by construction; place the bad byte as the lexer would.
+        let prefix = std::str::from_utf8(valid).unwrap_or_default();
+        SceneError::at(
+            &end_position(prefix, path.into()),
+            ErrorKind::InvalidUtf8 {
+                byte: bytes[e.valid_up_to()],
+            },
+        )
+    })?;
+    if super::nff::is_nff(path, text) {
+        return super::nff::parse_nff(text, path);
     }
-    parse(&text, path)
+    parse(text, path)
 }
 
 /// Builds a validated [`Scene`] from a syntax tree; `file` is the scene file's path, whose
@@ -419,6 +465,28 @@ impl<'a> Fields<'a> {
         self.vector(key)?.ok_or_else(|| self.missing(key, detail))
     }
 
+    /// A required direction (`Axis`, `Normal`): only its direction matters, so a vector so
+    /// small or large that its squared length under- or overflows (`(0, 0, 1e-200)`) is
+    /// rescaled by its largest component, which normalising then handles; the zero vector is
+    /// refused. Other vectors are kept bit for bit.
+    fn required_direction(&self, key: Key, detail: &str) -> Result<DVec3, SceneError> {
+        let v = self.required_vector(key, detail)?;
+        let largest = v.abs().max_element();
+        if largest == 0.0 {
+            return Err(invalid(
+                self.span_of(key),
+                key,
+                "must not be the zero vector",
+            ));
+        }
+        let len2 = v.length_squared();
+        Ok(if len2 < f64::MIN_POSITIVE || !len2.is_finite() {
+            v / largest
+        } else {
+            v
+        })
+    }
+
     fn colour(&self, key: Key) -> Result<Option<Rgb>, SceneError> {
         self.vector_in(key, true)
     }
@@ -645,6 +713,7 @@ fn build_light(f: &mut Fields<'_>) -> Result<Light, SceneError> {
 fn build_viewport(f: &mut Fields<'_>) -> Result<Viewport, SceneError> {
     f.only(&[Key::Size, Key::Origin, Key::Resolution], "viewport")?;
     let size = f.size(Key::Size)?.ok_or_else(|| f.missing(Key::Size, ""))?;
+    check_image_size(size).map_err(|reason| invalid(f.span_of(Key::Size), Key::Size, reason))?;
     // `Origin` placed Stam's window on his screen; it has no meaning for an image file and
     // is accepted (and checked to be a pair) so that his files read unchanged.
     if let Some(o) = f.get(Key::Origin)
@@ -699,6 +768,40 @@ fn build_texture(
     Ok((texture, name))
 }
 
+/// Decodes a PNG texture of at most [`MAX_TEXTURE_TEXELS`] texels. The error is a short
+/// reason for the user: the decoder's own messages carry its internal state (debug dumps of
+/// chunk types and decoder structs), which says nothing to someone who wrote a scene.
+fn decode_png(bytes: &[u8]) -> Result<image::DynamicImage, String> {
+    use image::error::{ImageError, LimitErrorKind};
+    let mut reader =
+        image::ImageReader::with_format(std::io::Cursor::new(bytes), image::ImageFormat::Png);
+    let mut limits = image::Limits::default();
+    // Sides as for every image; no more bytes than the most texels need in 16-bit RGBA.
+    limits.max_image_width = Some(MAX_IMAGE_SIDE);
+    limits.max_image_height = Some(MAX_IMAGE_SIDE);
+    limits.max_alloc = Some(8 * MAX_TEXTURE_TEXELS);
+    reader.limits(limits);
+    let too_big =
+        || format!("the image has more than the {MAX_TEXTURE_TEXELS} texels a texture may have");
+    let img = reader.decode().map_err(|e| match e {
+        ImageError::Limits(l)
+            if matches!(
+                l.kind(),
+                LimitErrorKind::DimensionError | LimitErrorKind::InsufficientMemory
+            ) =>
+        {
+            too_big()
+        }
+        ImageError::Unsupported(_) => "a PNG variant the decoder does not support".to_string(),
+        ImageError::IoError(e) => e.to_string(),
+        _ => "not a valid PNG file (corrupt or truncated)".to_string(),
+    })?;
+    if u64::from(img.width()) * u64::from(img.height()) > MAX_TEXTURE_TEXELS {
+        return Err(too_big());
+    }
+    Ok(img)
+}
+
 /// Reads an image texture: a PNG (any size; `Size`, if given, must match), or Stam's raw
 /// format (Annexe B `GetTexture`): `w·h` red bytes, then `w·h` green, then `w·h` blue, rows
 /// first, with `Size = w x h` required.
@@ -722,9 +825,8 @@ fn read_texture(
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("png"));
     if is_png {
-        let img = image::open(path)
-            .map_err(|e| fail(e.to_string()))?
-            .to_rgb8();
+        let bytes = read_bounded(path, MAX_TEXTURE_BYTES).map_err(|e| fail(e.to_string()))?;
+        let img = decode_png(&bytes).map_err(fail)?.to_rgb8();
         let (w, h) = img.dimensions();
         if let Some([sw, sh]) = size
             && [sw, sh] != [w, h]
@@ -747,8 +849,15 @@ fn read_texture(
         });
     }
     let [w, h] = size.ok_or_else(|| f.missing(Key::Size, " (a raw RGB texture needs its size)"))?;
-    let bytes = std::fs::read(path).map_err(|e| fail(e.to_string()))?;
     let n = u64::from(w) * u64::from(h);
+    if n > MAX_TEXTURE_TEXELS {
+        return Err(invalid(
+            f.span_of(Key::Size),
+            Key::Size,
+            format!("{w}x{h} has more than the {MAX_TEXTURE_TEXELS} texels a texture may have"),
+        ));
+    }
+    let bytes = read_bounded(path, MAX_TEXTURE_BYTES).map_err(|e| fail(e.to_string()))?;
     if bytes.len() as u64 != 3 * n {
         return Err(fail(format!(
             "expected 3 × {w} × {h} = {} bytes of planar RGB, found {}",
@@ -926,8 +1035,37 @@ fn build_object(
                 "scale factors must not be zero",
             ));
         }
+        let det = v.x * v.y * v.z;
+        if !det.is_finite() || det == 0.0 {
+            return Err(invalid(
+                f.span_of(Key::Scale),
+                Key::Scale,
+                format!(
+                    "the product of the scale factors, {:e}, {} the range of f64 (the \
+                     transform's determinant must be a nonzero finite number)",
+                    v.x * v.y * v.z,
+                    if det == 0.0 {
+                        "underflows"
+                    } else {
+                        "overflows"
+                    }
+                ),
+            ));
+        }
         transform.scale = v;
     }
+    // The tracer places the shape by this transform (and a frame of its own for a torus or
+    // superquadric); check here, where the keys have places, that the result is finite.
+    let transform_span = [Key::Scale, Key::Rotate, Key::Translate]
+        .into_iter()
+        .find_map(|k| f.get(k).map(|field| &field.key_span));
+    let Some(_world_from_object) = transform.world_from_object() else {
+        return Err(invalid(
+            transform_span.unwrap_or(&f.block.command.span),
+            Key::Scale,
+            "the object's transform overflows f64 or is singular",
+        ));
+    };
     Ok(Object {
         shape,
         material,
@@ -981,7 +1119,7 @@ fn build_shape(f: &Fields<'_>, shape: ShapeType, base: &Path) -> Result<ShapeKin
         }
         ShapeType::Plane => ShapeKind::Plane {
             origin: vector(Key::Origin)?,
-            normal: vector(Key::Normal)?,
+            normal: f.required_direction(Key::Normal, &detail)?,
         },
         // Stam's four-sided polygon has `a` and `d` as opposite corners: `IntPolygon` tests
         // the wedge at `a` between `ab` and `ac`, and the wedge at `d` between `db` and `dc`
@@ -1003,11 +1141,18 @@ fn build_shape(f: &Fields<'_>, shape: ShapeType, base: &Path) -> Result<ShapeKin
         },
         ShapeType::Superquadric => {
             let (p, span) = f.required_number(Key::Power, &detail)?;
-            let power = whole(p, 1, u32::MAX).ok_or_else(|| {
+            let power = whole(p, 1, MAX_SUPERQUADRIC_POWER).ok_or_else(|| {
                 invalid(
                     span,
                     Key::Power,
-                    format!("must be a whole number ≥ 1, found {p}"),
+                    if p > f64::from(MAX_SUPERQUADRIC_POWER) {
+                        format!(
+                            "must be at most {MAX_SUPERQUADRIC_POWER} (the largest power the \
+                             ray polynomial's root finder handles), found {p}"
+                        )
+                    } else {
+                        format!("must be a whole number ≥ 1, found {p}")
+                    },
                 )
             })?;
             ShapeKind::Superquadric {
@@ -1018,7 +1163,7 @@ fn build_shape(f: &Fields<'_>, shape: ShapeType, base: &Path) -> Result<ShapeKin
         }
         ShapeType::Torus => ShapeKind::Torus {
             center: vector(Key::Center)?,
-            axis: vector(Key::Axis)?,
+            axis: f.required_direction(Key::Axis, &detail)?,
             major: f.required_number(Key::MajorRadius, &detail)?.0,
             minor: f.required_number(Key::MinorRadius, &detail)?.0,
         },
@@ -1122,7 +1267,14 @@ fn read_patches(
             },
         )
     };
-    let text = std::fs::read_to_string(&path).map_err(|e| fail(e.to_string()))?;
+    let bytes = read_bounded(&path, MAX_CONTROL_POINT_BYTES).map_err(|e| fail(e.to_string()))?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        fail(format!(
+            "not UTF-8 text (byte {} is 0x{:02X})",
+            e.utf8_error().valid_up_to(),
+            e.as_bytes()[e.utf8_error().valid_up_to()]
+        ))
+    })?;
     let patches = if mesh {
         parse_bpt(&text)
     } else {

@@ -37,13 +37,76 @@ impl fmt::Display for Span {
     }
 }
 
+/// The most characters of one backtick-quoted excerpt of the input (a key, a token, an
+/// expression) that a message shows; longer ones end in `…`. A line of a terminal is 80
+/// characters, and the excerpt only has to identify the token next to its line and column.
+pub const MAX_QUOTED_CHARS: usize = 60;
+
+/// The most characters of a whole message; the rest becomes `…`. Messages name a file, a
+/// place and a few excerpts; beyond this the text can only come from a pathological input.
+pub const MAX_MESSAGE_CHARS: usize = 1000;
+
+/// Makes a message safe to print to a terminal: control characters (an ESC sequence in a
+/// scene could recolour or retitle the terminal), bidirectional overrides and line
+/// separators are written as `\u{…}` escapes, each backtick-quoted excerpt is cut to
+/// [`MAX_QUOTED_CHARS`] characters and the whole message to [`MAX_MESSAGE_CHARS`]. Every
+/// [`SceneError`] message goes through it; the `render` program also applies it to its whole
+/// error chain (file names and system messages included). Applying it twice changes nothing.
+///
+/// # Examples
+/// ```
+/// use render::scene::escape_message;
+/// assert_eq!(escape_message("unknown key `K\u{1b}[31m`"), "unknown key `K\\u{1b}[31m`");
+/// ```
+pub fn escape_message(message: &str) -> String {
+    let mut out = String::with_capacity(message.len().min(MAX_MESSAGE_CHARS + 8));
+    let (mut in_quote, mut quoted, mut cut) = (false, 0usize, false);
+    let mut kept = 0usize;
+    for c in message.chars() {
+        if kept >= MAX_MESSAGE_CHARS {
+            out.push('…');
+            return out;
+        }
+        kept += 1;
+        if c == '`' {
+            if cut {
+                out.push('…');
+            }
+            in_quote = !in_quote;
+            (quoted, cut) = (0, false);
+            out.push(c);
+            continue;
+        }
+        if in_quote {
+            quoted += 1;
+            if quoted > MAX_QUOTED_CHARS {
+                cut = true;
+                kept -= 1;
+                continue;
+            }
+        }
+        let unsafe_char = c.is_control()
+            || matches!(c, '\u{2028}' | '\u{2029}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}');
+        if unsafe_char {
+            out.push_str(&c.escape_unicode().to_string());
+        } else {
+            out.push(c);
+        }
+    }
+    if cut {
+        out.push('…');
+    }
+    out
+}
+
 /// An error while reading, parsing or building a scene.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum SceneError {
-    /// The scene file itself could not be read ([`crate::scene::load`] only). The reason is
+    /// The scene file itself could not be read ([`crate::scene::load`] only): missing,
+    /// unreadable, not a regular file, or too long. The reason is
     /// the error's `source()` (print the chain, e.g. `anyhow`'s `{:#}`, to see it).
-    #[error("cannot read {}", path.display())]
+    #[error("cannot read {}", escape_message(&path.display().to_string()))]
     Read {
         /// The path that was opened.
         path: PathBuf,
@@ -52,7 +115,7 @@ pub enum SceneError {
         source: std::io::Error,
     },
     /// A problem at a place in the scene text.
-    #[error("{span}: {kind}")]
+    #[error("{}", escape_message(&format!("{span}: {kind}")))]
     At {
         /// Where: file, line and column of the offending token.
         span: Span,
@@ -98,6 +161,13 @@ pub enum ErrorKind {
         found: char,
         /// Extra advice (empty or starting with a space), e.g. for a typographic minus.
         hint: &'static str,
+    },
+    /// A byte of the scene file that is not UTF-8 ([`crate::scene::load`]): the span is the
+    /// first such byte.
+    #[error("invalid UTF-8 (byte 0x{byte:02X}): scene files are UTF-8 text")]
+    InvalidUtf8 {
+        /// The offending byte.
+        byte: u8,
     },
     /// A number literal that does not fit in an `f64`.
     #[error("number `{text}` is out of range")]
@@ -286,6 +356,17 @@ pub enum ErrorKind {
         /// The degree the operation would produce.
         degree: u64,
         /// The limit.
+        max: u32,
+        /// The operation, as printed (shortened).
+        expr: String,
+    },
+    /// A power whose exponent is so large that the degree it produces is not even a 64-bit
+    /// integer (e.g. `x^1e308`).
+    #[error("exponent {exponent:e} of `{expr}` gives a degree far above the maximum {max}")]
+    ExponentTooLarge {
+        /// The exponent as written.
+        exponent: f64,
+        /// The degree limit.
         max: u32,
         /// The operation, as printed (shortened).
         expr: String,

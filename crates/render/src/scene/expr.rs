@@ -368,9 +368,19 @@ fn expand_in(e: &Expr, env: &Constants, vars: bool) -> Result<Poly3, SceneError>
                     // before it is converted.
                     let degree = f64::from(a.degree()) * k;
                     if degree > f64::from(MAX_EQUATION_DEGREE) {
-                        // Saturating: the exact value of an absurd degree does not matter.
-                        let degree = degree.min(u64::MAX as f64) as u64;
-                        degree_check(span, degree, e)?;
+                        // Up to 2⁵³ the degree is an exact integer; beyond, name the exponent
+                        // instead of a saturated, meaningless degree.
+                        if degree >= 9_007_199_254_740_992.0 {
+                            return Err(SceneError::at(
+                                span,
+                                ErrorKind::ExponentTooLarge {
+                                    exponent: k,
+                                    max: MAX_EQUATION_DEGREE,
+                                    expr: quote(e),
+                                },
+                            ));
+                        }
+                        degree_check(span, degree as u64, e)?;
                     }
                     finite(a.pow(k as u32), span, e)
                 }

@@ -109,6 +109,19 @@ pub(crate) struct Token {
     pub(crate) spaced: bool,
 }
 
+/// Whether `c` ends a line: `\n`, or `\r` (alone in old Mac files, before `\n` in DOS ones).
+fn is_line_break(c: char) -> bool {
+    c == '\n' || c == '\r'
+}
+
+/// The place just after `text`, as the lexer counts lines and columns: where a file whose
+/// first `text.len()` bytes are `text` goes wrong (the first byte that is not UTF-8).
+pub(crate) fn end_position(text: &str, file: Arc<Path>) -> Span {
+    let mut lexer = Lexer::new(text, file);
+    while lexer.bump().is_some() {}
+    lexer.span()
+}
+
 /// The lexer state: a cursor into the text.
 pub(crate) struct Lexer<'a> {
     text: &'a str,
@@ -168,7 +181,9 @@ impl<'a> Lexer<'a> {
     fn bump(&mut self) -> Option<char> {
         let c = self.peek_char()?;
         self.pos += c.len_utf8();
-        if c == '\n' {
+        // `\n`, `\r\n` and a lone `\r` (old Mac files) each end a line; the `\r` of `\r\n`
+        // is an ordinary blank before its `\n`.
+        if c == '\n' || (c == '\r' && self.peek_char() != Some('\n')) {
             self.line = self.line.saturating_add(1);
             self.col = 1;
             self.line_start = true;
@@ -189,7 +204,7 @@ impl<'a> Lexer<'a> {
                 }
                 Some('/') if self.peek_char2() == Some('/') => {
                     while let Some(c) = self.peek_char() {
-                        if c == '\n' {
+                        if is_line_break(c) {
                             break;
                         }
                         self.bump();
@@ -356,32 +371,35 @@ impl<'a> Lexer<'a> {
     pub(crate) fn next_char_on_line(&mut self) -> Option<char> {
         while self
             .peek_char()
-            .is_some_and(|c| c.is_whitespace() && c != '\n')
+            .is_some_and(|c| c.is_whitespace() && !is_line_break(c))
         {
             self.bump();
         }
-        self.peek_char().filter(|&c| c != '\n')
+        self.peek_char().filter(|&c| !is_line_break(c))
     }
 
     pub(crate) fn path(&mut self) -> Result<(String, Span), SceneError> {
         while self
             .peek_char()
-            .is_some_and(|c| c.is_whitespace() && c != '\n')
+            .is_some_and(|c| c.is_whitespace() && !is_line_break(c))
         {
             self.bump();
         }
         let span = self.span();
         self.after_number = false;
         match self.peek_char() {
-            None | Some('\n') => Err(SceneError::at(
+            None => Err(SceneError::at(
                 &span,
                 ErrorKind::Expected {
                     expected: "a file name on the same line".into(),
-                    found: if self.peek_char().is_none() {
-                        "end of file".into()
-                    } else {
-                        "end of line".into()
-                    },
+                    found: "end of file".into(),
+                },
+            )),
+            Some(c) if is_line_break(c) => Err(SceneError::at(
+                &span,
+                ErrorKind::Expected {
+                    expected: "a file name on the same line".into(),
+                    found: "end of line".into(),
                 },
             )),
             Some('"') => {
@@ -395,7 +413,10 @@ impl<'a> Lexer<'a> {
                             self.line_start = false;
                             return Ok((name, span));
                         }
-                        None | Some('\n') => {
+                        None => {
+                            return Err(SceneError::at(&span, ErrorKind::UnterminatedString));
+                        }
+                        Some(c) if is_line_break(c) => {
                             return Err(SceneError::at(&span, ErrorKind::UnterminatedString));
                         }
                         Some(_) => {

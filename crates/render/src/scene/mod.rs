@@ -14,6 +14,7 @@ mod lexer;
 mod model;
 mod nff;
 mod print;
+mod source;
 mod syntax;
 
 pub use bpt::{BptError, MAX_BPT_PATCHES, parse_bpt};
@@ -26,11 +27,15 @@ pub use model::{
 
 // The scene language (text → tokens → syntax tree → `Scene`); see
 // `paper-notes/scene-language.md`.
-pub use build::{MAX_IMAGE_SIDE, MAX_RECURSION_DEPTH, build, load, parse};
-pub use error::{ErrorKind, SceneError, Span};
+pub use build::{
+    MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_RECURSION_DEPTH, build, check_image_size, load, parse,
+};
+pub use error::{ErrorKind, MAX_MESSAGE_CHARS, MAX_QUOTED_CHARS, SceneError, Span, escape_message};
 pub use expr::{Axis, BinOp, Expr, ExprKind, MAX_EQUATION_DEGREE, Spanned};
+pub use model::MAX_SUPERQUADRIC_POWER;
 pub use nff::{MAX_NFF_VERTICES, is_nff, nff_material, parse_nff};
 pub use print::print;
+pub use source::{MAX_CONTROL_POINT_BYTES, MAX_SCENE_BYTES, MAX_TEXTURE_BYTES, MAX_TEXTURE_TEXELS};
 pub use syntax::{
     Block, Command, Entry, Key, MAX_EXPR_DEPTH, MAX_NESTING, SceneAst, ShapeType, TextureType,
     Value, parse_syntax,

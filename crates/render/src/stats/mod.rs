@@ -40,6 +40,9 @@ pub struct TraceStats {
     pub secondary_skipped_material: u64,
     /// Secondary rays not traced because `MaxDepth` was reached.
     pub secondary_skipped_depth: u64,
+    /// Secondary rays not traced because their weight fell below
+    /// [`ADC_BAILOUT`](crate::whitted::ADC_BAILOUT).
+    pub secondary_skipped_weight: u64,
     /// Transmissions turned into reflections by total internal reflection.
     pub total_internal_reflections: u64,
     /// Of those, rays not traced because the reflected ray (same origin, same direction) was
@@ -99,6 +102,7 @@ impl TraceStats {
         self.shadow_blocked += o.shadow_blocked;
         self.secondary_skipped_material += o.secondary_skipped_material;
         self.secondary_skipped_depth += o.secondary_skipped_depth;
+        self.secondary_skipped_weight += o.secondary_skipped_weight;
         self.total_internal_reflections += o.total_internal_reflections;
         self.tir_merged += o.tir_merged;
         self.singular_normals += o.singular_normals;
@@ -307,6 +311,11 @@ impl fmt::Display for StatsReport<'_> {
             f,
             "  secondary rays, MaxDepth reached  {:>12}",
             s.secondary_skipped_depth
+        )?;
+        writeln!(
+            f,
+            "  secondary rays, weight < bailout  {:>12}",
+            s.secondary_skipped_weight
         )?;
         writeln!(
             f,

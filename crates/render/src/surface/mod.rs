@@ -46,7 +46,7 @@ pub use mesh::SmoothPolygon;
 pub use plane::Plane;
 pub use polygon::Polygon;
 pub use sphere::Sphere;
-pub use superquadric::Superquadric;
+pub use superquadric::{MAX_SUPERQUADRIC_POWER, Superquadric};
 pub use torus::Torus;
 pub use transformed::Transformed;
 

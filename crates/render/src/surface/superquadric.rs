@@ -26,6 +26,11 @@ use crate::geometry::{Bounds3, Ray, gamma};
 use crate::methods::RootMethods;
 use crate::workspace::Workspace;
 
+/// The largest superquadric `Power` (512): the ray polynomial has degree `p`, and its
+/// coefficients `C(p, m)·a^(p−m)·b^m` span about `2^p` in magnitude.
+///
+pub use crate::scene::MAX_SUPERQUADRIC_POWER;
+
 /// A superquadric centred at the origin with half-extents `size` and integer power.
 #[derive(Clone, Debug)]
 pub struct Superquadric {
@@ -39,8 +44,11 @@ pub struct Superquadric {
 }
 
 impl Superquadric {
-    /// The superquadric with half-extents `size` (positive) and power `power ≥ 1`.
+    /// The superquadric with half-extents `size` (positive) and power
+    /// `1 ≤ power ≤ MAX_SUPERQUADRIC_POWER`; a larger power is clamped to the maximum (the
+    /// scene model refuses it before this point).
     pub fn new(size: DVec3, power: u32) -> Self {
+        let power = power.clamp(1, MAX_SUPERQUADRIC_POWER);
         let mut binom = vec![1.0; power as usize + 1];
         for m in 1..=power as usize {
             binom[m] = binom[m - 1] * f64::from(power - m as u32 + 1) / m as f64;
