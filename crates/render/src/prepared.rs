@@ -214,7 +214,8 @@ fn build_surface(
             let axis = *apex - *base;
             let frame = Transform::frame(*base, axis)?;
             let m = world_from_object.compose(&frame)?;
-            let cone = crate::surface::Cone::new(*base_radius, *apex_radius, axis.length(), *caps);
+            let cone = crate::surface::Cone::new(*base_radius, *apex_radius, axis.length(), *caps)
+                .with_root_methods(methods.roots);
             place(cone, &m)
         }
         ShapeKind::SmoothPolygon { vertices, normals } => place(
@@ -232,6 +233,41 @@ mod tests {
     use crate::geometry::Ray;
     use crate::scene::{ControlNet, Object};
     use crate::workspace::Workspace;
+
+    /// `render --isolation` reaches cones and cylinders: they were built with the default
+    /// root methods whatever the render asked for (found merging the scene BVH branch), so the
+    /// exact reference render still traced them by Bernstein isolation. The same ray through
+    /// a closed cylinder must leave different solver statistics under `Exact` and the default.
+    #[test]
+    fn isolation_method_reaches_cones() {
+        let mut scene = Scene::default();
+        scene.objects.push(Object::new(ShapeKind::Cone {
+            base: DVec3::ZERO,
+            base_radius: 1.0,
+            apex: DVec3::new(0.0, 0.0, 2.0),
+            apex_radius: 0.5,
+            caps: true,
+        }));
+        let ray = Ray::new(DVec3::new(0.1, -5.0, 1.0), DVec3::new(0.0, 1.0, 0.05));
+        let stats_with = |isolation| {
+            let roots = RootMethods {
+                isolation,
+                ..RootMethods::default()
+            };
+            let prepared = PreparedScene::with_methods(&scene, roots, None).unwrap();
+            let mut ws = Workspace::new();
+            let hit = prepared.primitives[0]
+                .surface
+                .intersect(&ray, 0.0..f64::INFINITY, &mut ws);
+            assert!(hit.is_some(), "the ray crosses the cone");
+            ws.stats.roots.clone()
+        };
+        assert_ne!(
+            stats_with(poly::IsolationMethod::Exact),
+            stats_with(poly::IsolationMethod::Bernstein),
+            "the cone solved with the render's isolation method"
+        );
+    }
 
     /// `render --patch-method` reaches the surfaces through `with_methods` (it used to be applied
     /// by cloning the whole scene in `render_scene`): a Gröbner object prepared with a resultant

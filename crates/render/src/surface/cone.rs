@@ -28,6 +28,7 @@ use glam::DVec3;
 use super::implicit::{Implicit, ImplicitFn};
 use super::{Hit, Plane, Surface, SurfaceGeometry, SurfaceKind};
 use crate::geometry::{Bounds3, Ray};
+use crate::methods::RootMethods;
 use crate::trivariate::{Poly3, RestrictScratch};
 use crate::workspace::Workspace;
 
@@ -117,6 +118,13 @@ impl Cap {
         }
     }
 
+    fn with_root_methods(self, roots: RootMethods) -> Self {
+        Cap {
+            plane: self.plane.with_root_methods(roots),
+            radius: self.radius,
+        }
+    }
+
     fn hit(&self, ray: &Ray, range: Range<f64>, ws: &mut Workspace) -> Option<(f64, DVec3)> {
         let (t, p) = self.plane.nearest(ray, range, ws, false)?;
         (p.x * p.x + p.y * p.y <= self.radius * self.radius).then_some((t, p))
@@ -157,6 +165,20 @@ impl Cone {
             side,
             caps: list,
             bounds,
+        }
+    }
+
+    /// The same cone solving its side and caps with `roots` (`render --isolation/--refine`),
+    /// as every implicit surface does.
+    pub fn with_root_methods(self, roots: RootMethods) -> Self {
+        Cone {
+            side: self.side.with_root_methods(roots),
+            caps: self
+                .caps
+                .into_iter()
+                .map(|c| c.with_root_methods(roots))
+                .collect(),
+            bounds: self.bounds,
         }
     }
 }
