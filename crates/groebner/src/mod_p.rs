@@ -128,10 +128,10 @@ fn binomial(k: usize, j: usize) -> u64 {
     // Pascal's triangle: no inversion.
     let mut row = vec![1u64];
     for _ in 0..k {
-        let mut next = vec![1u64; row.len() + 1];
-        for i in 1..row.len() {
-            next[i] = reduce(row[i - 1] + row[i]);
-        }
+        let mut next = Vec::with_capacity(row.len() + 1);
+        next.push(1);
+        next.extend(row.windows(2).map(|w| reduce(w[0] + w[1])));
+        next.push(1);
         row = next;
     }
     row[j]
@@ -197,14 +197,15 @@ pub(crate) fn proves_common_root(f: [ChunksExact<'_, f64>; 2]) -> bool {
         }
         // Σ_j (−1)^(k−j)·C(k, j)·R_j with R_j = terms[j].0 / terms[j].1, times Π_j den_j.
         let mut sum = 0;
-        for j in 0..=k {
-            let mut x = mul(binomial(k, j), terms[j].0);
-            for (l, term) in terms.iter().enumerate() {
+        for (j, &(r, _)) in terms.iter().enumerate() {
+            let mut x = mul(binomial(k, j), r);
+            for (l, &(_, den)) in terms.iter().enumerate() {
                 if l != j {
-                    x = mul(x, term.1);
+                    x = mul(x, den);
                 }
             }
-            sum = if (k - j) % 2 == 0 {
+            // sign (−1)^(k−j)
+            sum = if (k - j) & 1 == 0 {
                 reduce(sum + x)
             } else {
                 sub(sum, x)
