@@ -10,7 +10,7 @@ use rand_chacha::ChaCha8Rng;
 use render::aggregate::Aggregate;
 use render::geometry::{Bounds3, Ray};
 use render::glam::DVec3;
-use render::scene::{BoundingVolume, ControlNet, Object, Scene, ShapeKind};
+use render::scene::{BoundingVolume, ControlNet, Object, Scene, ShapeKind, ValidScene};
 use render::surface::Hit;
 use render::whitted::{nearest_hit, occluded};
 use render::{PatchMethod, Poly3, PreparedScene, Workspace};
@@ -151,7 +151,8 @@ fn bvh_nearest_hits_and_shadow_verdicts_equal_brute_force() {
     let mut hits = 0;
     for _ in 0..4 {
         let scene = random_scene(&mut rng);
-        let prepared = PreparedScene::new(&scene).expect("valid scene");
+        let prepared =
+            PreparedScene::new(&ValidScene::new(scene.clone()).unwrap()).expect("valid scene");
         assert_eq!(prepared.aggregate.unbounded().len(), 1, "only the plane");
         let mut ws = Workspace::new();
         let centres: Vec<DVec3> = prepared

@@ -174,6 +174,22 @@ fn malformed_lines_name_file_line_and_column() {
     }
 }
 
+/// Issue 10 (validation once per load). Caught: an NFF file's scene-level invariants (here a
+/// view whose `from` equals its `at`) were checked only when the render prepared the scene,
+/// a second validation that could not say where the problem was. The loader now runs the
+/// checks once, at the end of the load, and names the `v` line; the renderer takes the
+/// checked scene (`ValidScene`) without checking it again.
+#[test]
+fn r10_nff_view_is_checked_by_the_loader_at_its_line() {
+    let text = "s 0 0 0 1\nv\nfrom 1 1 1\nat 1 1 1\nup 0 0 1\nangle 40\nhither 1\nresolution 8 8\n";
+    let err = parse_nff(text, Path::new("x.nff")).expect_err("from = at");
+    assert_eq!(
+        err.to_string(),
+        "x.nff:2:1: camera: Eye and LookAt must differ",
+        "located at the view entity"
+    );
+}
+
 #[test]
 fn format_is_chosen_by_extension_then_by_content() {
     let nff = "# a comment\nv\nfrom 0 0 5\n";

@@ -8,7 +8,9 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use render::geometry::{Ray, offset_ray_origin};
 use render::glam::DVec3;
-use render::scene::{CameraSpec, Illumination, Light, LookAtCamera, Object, Scene, ShapeKind};
+use render::scene::{
+    CameraSpec, Illumination, Light, LookAtCamera, Object, Scene, ShapeKind, ValidScene,
+};
 use render::surface::{Algebraic, Implicit, Sphere, Superquadric, Surface, Torus, Transformed};
 use render::whitted::nearest_hit;
 use render::{Camera, Poly3, PreparedScene, RenderSettings, Workspace, render};
@@ -63,7 +65,7 @@ fn sphere_coverage_matches_projected_disc() {
         center: DVec3::ZERO,
         radius: r,
     }));
-    let prepared = PreparedScene::new(&scene).unwrap();
+    let prepared = PreparedScene::new(&ValidScene::new(scene.clone()).unwrap()).unwrap();
     let settings = RenderSettings {
         size: [size, size],
         resolution: [1, 1],
@@ -118,7 +120,7 @@ fn exact_torus_root(ray: &Ray, major: f64, minor: f64) -> Option<f64> {
 fn torus_depth_matches_exact_root() {
     let scene = torus_scene();
     let size = 48u32;
-    let prepared = PreparedScene::new(&scene).unwrap();
+    let prepared = PreparedScene::new(&ValidScene::new(scene.clone()).unwrap()).unwrap();
     let settings = RenderSettings {
         size: [size, size],
         resolution: [1, 1],
@@ -345,13 +347,13 @@ fn torus_and_equivalent_algebraic_surface_agree() {
         depth: true,
     };
     let a = render(
-        &PreparedScene::new(&scene).unwrap(),
+        &PreparedScene::new(&ValidScene::new(scene.clone()).unwrap()).unwrap(),
         &scene.camera,
         &settings,
         &|_| {},
     );
     let b = render(
-        &PreparedScene::new(&alg).unwrap(),
+        &PreparedScene::new(&ValidScene::new(alg.clone()).unwrap()).unwrap(),
         &alg.camera,
         &settings,
         &|_| {},

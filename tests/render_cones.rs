@@ -4,7 +4,7 @@
 
 use render::geometry::Ray;
 use render::glam::DVec3;
-use render::scene::{CameraSpec, LookAtCamera, Object, Scene, ShapeKind};
+use render::scene::{CameraSpec, LookAtCamera, Object, Scene, ShapeKind, ValidScene};
 use render::whitted::nearest_hit;
 use render::{Camera, PreparedScene, RenderSettings, Workspace, render};
 
@@ -29,7 +29,7 @@ fn end_on(shape: ShapeKind) -> Scene {
 
 /// Covered area in pixels (summed alpha, 4×4 samples per pixel).
 fn coverage(scene: &Scene) -> f64 {
-    let prepared = PreparedScene::new(scene).unwrap();
+    let prepared = PreparedScene::new(&ValidScene::new(scene.clone()).unwrap()).unwrap();
     let settings = RenderSettings {
         size: [SIZE, SIZE],
         resolution: [1, 1],
@@ -137,7 +137,7 @@ fn cone_depth_matches_the_closed_form_root() {
         up: DVec3::Z,
         view_field_deg: 35.0,
     });
-    let prepared = PreparedScene::new(&scene).unwrap();
+    let prepared = PreparedScene::new(&ValidScene::new(scene.clone()).unwrap()).unwrap();
     let camera = Camera::new(&scene.camera, 48, 48);
     let mut ws = Workspace::new();
     let mut checked = 0;

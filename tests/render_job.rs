@@ -2,10 +2,10 @@
 //! PNG and PFM outputs, atomic writes, errors that name the file.
 
 use render::glam::DVec3;
-use render::scene::{Object, Scene, ShapeKind};
+use render::scene::{Object, Scene, ShapeKind, ValidScene};
 use render::{Gamma, PngOptions, RenderOptions, read_pfm, render_scene};
 
-fn sphere_scene() -> Scene {
+fn sphere_scene() -> ValidScene {
     let mut scene = Scene::default();
     scene.objects.push(Object::new(ShapeKind::Sphere {
         center: DVec3::ZERO,
@@ -15,7 +15,7 @@ fn sphere_scene() -> Scene {
         source: DVec3::new(3.0, -4.0, 6.0),
         color: DVec3::ONE,
     });
-    scene
+    ValidScene::new(scene).expect("a valid scene")
 }
 
 #[test]
@@ -81,25 +81,18 @@ fn failures_keep_existing_files_and_name_the_path() {
     let dir = tempfile::tempdir().unwrap();
     let png = dir.path().join("keep.png");
     std::fs::write(&png, b"precious").unwrap();
-    let mut bad = sphere_scene();
+    // An invalid scene cannot reach `render_scene`: `ValidScene::new` refuses it, naming the
+    // object and key.
+    let mut bad: Scene = sphere_scene().into_scene();
     bad.objects.push(Object::new(ShapeKind::Sphere {
         center: DVec3::ZERO,
         radius: -1.0,
     }));
-    let opts = RenderOptions {
-        output: Some(png.clone()),
-        ..RenderOptions::default()
-    };
-    let err = render_scene(&bad, None, &opts, &|_, _| {}).unwrap_err();
+    let err = ValidScene::new(bad).unwrap_err();
     let msg = format!("{:#}", anyhow::Error::from(err));
     assert!(
         msg.contains("object 2") && msg.contains("Radius"),
         "names the object and key: {msg}"
-    );
-    assert_eq!(
-        std::fs::read(&png).unwrap(),
-        b"precious",
-        "nothing overwritten"
     );
 
     let missing = dir.path().join("no/such/dir/out.png");
@@ -115,12 +108,18 @@ fn failures_keep_existing_files_and_name_the_path() {
         "names the output path: {msg}"
     );
     let zero = RenderOptions {
+        output: Some(png.clone()),
         samples: 0,
         ..RenderOptions::default()
     };
     assert!(
         render_scene(&sphere_scene(), None, &zero, &|_, _| {}).is_err(),
         "samples 0 refused"
+    );
+    assert_eq!(
+        std::fs::read(&png).unwrap(),
+        b"precious",
+        "nothing overwritten by the failed render"
     );
 }
 

@@ -110,6 +110,7 @@ fn whitted_torus_is_the_glass_torus_over_a_checkered_mirror() {
     let scene = load(&scenes_dir().join("whitted-torus.scene")).expect("loads");
     let torus = load(&scenes_dir().join("torus.scene"))
         .expect("loads")
+        .into_scene()
         .objects
         .remove(0);
     assert_eq!(scene.world.max_depth, 5, "MaxDepth 5");

@@ -175,7 +175,7 @@ fn scene_view(file: &str) -> Result<(LookAtCamera, glam::DVec3)> {
         .join("../scenes")
         .join(file);
     let scene = render::scene::load(&path)?;
-    let CameraSpec::LookAt(cam) = scene.camera else {
+    let CameraSpec::LookAt(cam) = scene.camera.clone() else {
         anyhow::bail!("{file}: expected an Eye/LookAt camera");
     };
     let light = scene

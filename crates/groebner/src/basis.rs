@@ -201,7 +201,7 @@ mod tests {
             "but (0, v) is a root for every v"
         );
         assert!(
-            crate::is_groebner_basis(g.elements()),
+            crate::is_groebner_basis(g.elements()).unwrap(),
             "and it is a Gröbner basis: SP = −u² reduces to 0"
         );
     }

@@ -156,7 +156,7 @@ mod tests {
     /// The general path, written out: `(−1)^{N(N−1)/2} det B` over polynomial entries.
     fn general(f: &BiPoly<Rat>, g: &BiPoly<Rat>) -> Poly<Rat> {
         let n = f.deg_v().max(g.deg_v());
-        let det = poly_matrix_det(&bezout_matrix_v(f, g)).unwrap();
+        let det = poly_matrix_det(&bezout_matrix_v(f, g).unwrap()).unwrap();
         if (n * (n - 1) / 2) % 2 == 1 {
             -det
         } else {

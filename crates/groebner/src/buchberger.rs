@@ -74,10 +74,8 @@ pub const BUCHBERGER_MAX_REMAINDERS: usize = 1024;
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn buchberger<T: Scalar>(polys: &[BiPoly<T>]) -> Result<Basis<T>, Error> {
+    Error::check_all_finite(polys, "input")?;
     let input = track_all(polys);
-    if input.iter().any(|t| t.check_finite("buchberger").is_err()) {
-        return Err(Error::NonFinite { what: "input" });
-    }
     let g = buchberger_tracked(input)?;
     Ok(Basis::from_tracked(reduce_tracked_keep(g)))
 }
@@ -214,8 +212,12 @@ fn is_unit<T: Scalar>(t: &Tracked<T>) -> bool {
 ///
 /// # Exactness
 /// Exact over `Rat`; over `f64` the crate's relative zero rule applies to the tail reductions.
-pub fn reduce_basis<T: Scalar>(basis: &[BiPoly<T>]) -> Vec<BiPoly<T>> {
-    reduce_tracked(track_all(basis))
+///
+/// # Errors
+/// [`Error::NonFinite`] for a NaN or infinite coefficient.
+pub fn reduce_basis<T: Scalar>(basis: &[BiPoly<T>]) -> Result<Vec<BiPoly<T>>, Error> {
+    Error::check_all_finite(basis, "basis")?;
+    Ok(reduce_tracked(track_all(basis)))
 }
 
 pub(crate) fn reduce_tracked<T: Scalar>(g: Vec<Tracked<T>>) -> Vec<BiPoly<T>> {
@@ -270,7 +272,16 @@ pub(crate) fn reduce_tracked_keep<T: Scalar>(mut g: Vec<Tracked<T>>) -> Vec<Trac
 ///
 /// # Exactness
 /// Exact over `Rat`. Over `f64` "zero" is the crate's relative zero rule.
-pub fn is_groebner_basis<T: Scalar>(basis: &[BiPoly<T>]) -> bool {
+///
+/// # Errors
+/// [`Error::NonFinite`] for a NaN or infinite coefficient.
+pub fn is_groebner_basis<T: Scalar>(basis: &[BiPoly<T>]) -> Result<bool, Error> {
+    Error::check_all_finite(basis, "basis")?;
+    Ok(satisfies_buchberger_criterion(basis))
+}
+
+/// [`is_groebner_basis`] on checked input.
+pub(crate) fn satisfies_buchberger_criterion<T: Scalar>(basis: &[BiPoly<T>]) -> bool {
     let g = track_all(basis);
     (0..g.len()).all(|j| {
         (0..j).all(|i| {
@@ -299,11 +310,11 @@ mod tests {
             "reduced GB"
         );
         assert!(
-            is_groebner_basis(g.elements()),
+            is_groebner_basis(g.elements()).unwrap(),
             "Buchberger's output passes the test"
         );
         assert!(
-            !is_groebner_basis(&[f1, f2]),
+            !is_groebner_basis(&[f1, f2]).unwrap(),
             "{{F1, F2}} itself is not a Gröbner basis"
         );
     }
@@ -314,7 +325,7 @@ mod tests {
         let stam = stam_basis(&f1, &f2).unwrap();
         let buch = buchberger(&[f1, f2]).unwrap();
         assert_eq!(
-            reduce_basis(stam.elements()),
+            reduce_basis(stam.elements()).unwrap(),
             buch.into_elements(),
             "same ideal"
         );
@@ -375,7 +386,7 @@ mod tests {
             &g[0] * &g[1],
         ];
         assert_eq!(
-            reduce_basis(&buchberger(&mixed).unwrap().into_elements()),
+            reduce_basis(&buchberger(&mixed).unwrap().into_elements()).unwrap(),
             g,
             "canonical"
         );

@@ -27,6 +27,7 @@ use poly::{
 
 use crate::bicubic::Bicubic;
 use crate::buchberger::buchberger;
+use crate::mod_p::proves_common_root;
 use crate::options::{Root, SolveOptions, SolveStats, Verdict};
 use crate::resultant::sylvester_resultant_v;
 use crate::scalar::SolveScalar;
@@ -493,26 +494,36 @@ pub(crate) fn find_roots<T: SolveScalar, P: Rows<T>, Q: Rows<f64>>(
         }
     }
     merge_and_sort(&mut buf.roots, &mut buf.merged, opts.x_tol);
-    if resultant && buf.roots.is_empty() && no_common_root_at_all(system) {
+    if T::EXACT && resultant && buf.roots.is_empty() && no_common_root_at_all(system) {
         return Verdict::NoCommonRoot;
     }
     Verdict::Finite
 }
 
-/// Resultant methods, when no root verified: whether `F1 = F2 = 0` has no common root at all,
-/// real or complex — the resultant's roots all "at `v = ∞`". Exact, on the exact values of the
-/// inputs: with `g = gcd(lc_v F1, lc_v F2)`, every root of `Res_v` must be a root of `g` (the
-/// resultant stripped of `g`'s factors is constant), and then the common roots all have
-/// `g(u) = 0`, so `1 ∈ (F1, F2, g)` (Buchberger, Theorem 1) decides. Exact mode only: an
-/// `f64` pre-test (a small Sylvester determinant of the two leading coefficients) passed on
-/// most teapot systems and made the per-ray solve milliseconds slower, so `f64` keeps
-/// `Finite` here.
-fn no_common_root_at_all<T: SolveScalar, P: Rows<T>>(f: [&P; 2]) -> bool {
+/// Whether `F1 = F2 = 0` has no common root at all, real or complex — the resultant's roots
+/// all "at `v = ∞`" (issue 10, item 5). Exact, on the exact values of the inputs: with
+/// `g = gcd(lc_v F1, lc_v F2)`, every root of `Res_v` must be a root of `g` (the resultant
+/// stripped of `g`'s factors is constant), and then the common roots all have `g(u) = 0`, so
+/// `1 ∈ (F1, F2, g)` (Buchberger, Theorem 1) decides. That costs milliseconds, so `f64` inputs
+/// first try the modular proof that a common root exists ([`proves_common_root`]), which
+/// settles ordinary systems in microseconds. The per-ray path does not ask (a miss is a miss
+/// to the tracer); exact solves ask in [`find_roots`], `f64` ones in [`solve`](crate::solve).
+pub(crate) fn no_common_root_at_all<T: SolveScalar, P: Rows<T>>(f: [&P; 2]) -> bool {
     if !T::EXACT {
-        // On the teapot the pre-test passes for most systems (their leading coefficients in
-        // v share roots), and the exact test then costs milliseconds per ray: exact mode only
-        // until a cheaper f64 decision exists.
-        return false;
+        let as_f64 = |p: &P| -> (Vec<f64>, usize) {
+            let stride = p.rows().next().map_or(0, <[T]>::len);
+            (
+                p.flat().iter().map(poly::Scalar::nearest_f64).collect(),
+                stride,
+            )
+        };
+        let ((c1, s1), (c2, s2)) = (as_f64(f[0]), as_f64(f[1]));
+        if s1 == 0 || s2 == 0 {
+            return false;
+        }
+        if proves_common_root([c1.chunks_exact(s1), c2.chunks_exact(s2)]) {
+            return false;
+        }
     }
     let exact = |p: &P| -> Option<BiPoly<Rat>> {
         let stride = p.rows().next().map_or(0, <[T]>::len);

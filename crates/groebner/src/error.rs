@@ -1,5 +1,7 @@
 //! [`Error`]: what the Gröbner and resultant algorithms refuse to do, and why.
 
+use poly::{BiPoly, Scalar};
+
 /// Errors of the `groebner` crate.
 ///
 /// Numerical trouble in `f64` mode is *not* an error: a solve that finds nothing reports an
@@ -72,4 +74,28 @@ pub enum Error {
         /// Largest supported dimension.
         limit: usize,
     },
+}
+
+impl Error {
+    /// [`Error::NonFinite`] naming `what` when a coefficient is NaN or infinite (`f64` input;
+    /// exact values always pass). Every public entry of the crate refuses such input before
+    /// any work: a NaN leading term is never cancelled, so reduction would loop or hand NaN
+    /// back (issue 10; issue 13, item 16).
+    pub(crate) fn check_finite<T: Scalar>(coeffs: &[T], what: &'static str) -> Result<(), Error> {
+        if T::EXACT || coeffs.iter().all(|c| c.nearest_f64().is_finite()) {
+            Ok(())
+        } else {
+            Err(Error::NonFinite { what })
+        }
+    }
+
+    /// [`Error::check_finite`] on every polynomial of `polys`.
+    pub(crate) fn check_all_finite<T: Scalar>(
+        polys: &[BiPoly<T>],
+        what: &'static str,
+    ) -> Result<(), Error> {
+        polys
+            .iter()
+            .try_for_each(|p| Error::check_finite(p.coeffs(), what))
+    }
 }

@@ -41,6 +41,7 @@
 //! ray/patch   ray_patch.rs       F1, F2 of a ray and a patch (article §2)
 //! resultants  resultant.rs       Sylvester, Bézout, division-free determinant
 //!             bezout_bicubic.rs  the Bézout determinant in fixed-size arrays
+//!             mod_p.rs           residues mod 2³¹ − 1: a quick proof that a common root exists
 //! algebra     stam_grid.rs       Stam's loop on fixed grids (per ray)
 //!             stam_loop.rs       Stam's loop (article §4.2)
 //!             buchberger.rs      Buchberger's algorithm, reduced bases
@@ -97,6 +98,7 @@ mod bicubic;
 mod buchberger;
 mod driver;
 mod error;
+mod mod_p;
 mod options;
 mod per_ray;
 mod ray_patch;

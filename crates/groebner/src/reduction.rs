@@ -20,6 +20,9 @@ use crate::tracked::Tracked;
 /// Exact over `Rat`. Over `f64` the cancelled term is set to exactly zero and other
 /// coefficients follow the crate's relative zero rule.
 ///
+/// # Errors
+/// [`Error::NonFinite`] for a NaN or infinite coefficient of `p` or `basis`.
+///
 /// # Examples
 /// ```
 /// use groebner::reduction_step;
@@ -29,17 +32,21 @@ use crate::tracked::Tracked;
 /// let f1 = BiPoly::from_terms([r(1, 1, 1), r(1, 1, 2), r(-1, 3, 0)]);
 /// let f2 = BiPoly::from_terms([r(-1, 2, 0), r(1, 0, 0), r(1, 3, 1)]);
 /// let p = BiPoly::from_terms([r(1, 2, 2), r(1, 1, 1), r(1, 0, 0)]);
-/// let q = reduction_step(&p, &[f1.clone(), f2.clone()]).ok_or("reducible")?;
+/// let q = reduction_step(&p, &[f1.clone(), f2.clone()])?.ok_or("reducible")?;
 /// // q = p − u·F1 = −u²v + uv + u⁴ + 1, and q is irreducible.
 /// assert_eq!(q, BiPoly::from_terms([r(-1, 2, 1), r(1, 1, 1), r(1, 4, 0), r(1, 0, 0)]));
-/// assert!(reduction_step(&q, &[f1, f2]).is_none());
+/// assert!(reduction_step(&q, &[f1, f2])?.is_none());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn reduction_step<T: Scalar>(p: &BiPoly<T>, basis: &[BiPoly<T>]) -> Option<BiPoly<T>> {
+pub fn reduction_step<T: Scalar>(
+    p: &BiPoly<T>,
+    basis: &[BiPoly<T>],
+) -> Result<Option<BiPoly<T>>, Error> {
+    Error::check_finite(p.coeffs(), "p")?;
+    Error::check_all_finite(basis, "basis")?;
     let basis = track_all(basis);
     let mut p = Tracked::new(p.clone());
-    p.reduce_step(&basis, None)?;
-    Some(p.poly)
+    Ok(p.reduce_step(&basis, None).map(|_| p.poly))
 }
 
 /// The normal form `NF(p, F)` (article §3 def. 5): `p` reduced by `→F` until no term is a
@@ -51,14 +58,20 @@ pub fn reduction_step<T: Scalar>(p: &BiPoly<T>, basis: &[BiPoly<T>]) -> Option<B
 /// # Exactness
 /// Exact over `Rat`; over `f64` see [`reduction_step`].
 ///
+/// # Errors
+/// [`Error::NonFinite`] for a NaN or infinite coefficient of `p` or `basis` (it would be
+/// returned as NaN).
+///
 /// # Complexity
 /// One top-down sweep: each term of `p` and of the subtracted multiples is visited once, each
 /// visit tries every basis element (O(|F|) divisibility tests).
-pub fn normal_form<T: Scalar>(p: &BiPoly<T>, basis: &[BiPoly<T>]) -> BiPoly<T> {
+pub fn normal_form<T: Scalar>(p: &BiPoly<T>, basis: &[BiPoly<T>]) -> Result<BiPoly<T>, Error> {
+    Error::check_finite(p.coeffs(), "p")?;
+    Error::check_all_finite(basis, "basis")?;
     let basis = track_all(basis);
     let mut p = Tracked::new(p.clone());
     p.reduce_fully(&basis);
-    p.poly
+    Ok(p.poly)
 }
 
 /// The S-polynomial `SP(f, g)` (article §3 def. 6) of the monic versions of `f` and `g`:
@@ -70,6 +83,9 @@ pub fn normal_form<T: Scalar>(p: &BiPoly<T>, basis: &[BiPoly<T>]) -> BiPoly<T> {
 /// # Exactness
 /// Exact over `Rat`; over `f64` the `L` term is exactly zero and the relative zero rule applies.
 ///
+/// # Errors
+/// [`Error::NonFinite`] for a NaN or infinite coefficient of `f` or `g`.
+///
 /// # Examples
 /// ```
 /// use groebner::s_polynomial;
@@ -77,11 +93,14 @@ pub fn normal_form<T: Scalar>(p: &BiPoly<T>, basis: &[BiPoly<T>]) -> BiPoly<T> {
 /// // Article §3: SP(F1, F2) = u²F1 − vF2 = u³v + u²v − v − u⁵.
 /// let f1 = BiPoly::from_terms([(1.0, 1, 1), (1.0, 1, 2), (-1.0, 3, 0)]);
 /// let f2 = BiPoly::from_terms([(-1.0, 2, 0), (1.0, 0, 0), (1.0, 3, 1)]);
-/// let sp = s_polynomial(&f1, &f2);
+/// let sp = s_polynomial(&f1, &f2)?;
 /// assert_eq!(sp, BiPoly::from_terms([(1.0, 3, 1), (1.0, 2, 1), (-1.0, 0, 1), (-1.0, 5, 0)]));
+/// # Ok::<(), groebner::Error>(())
 /// ```
-pub fn s_polynomial<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> BiPoly<T> {
-    Tracked::s_poly(&Tracked::new(f.clone()), &Tracked::new(g.clone())).poly
+pub fn s_polynomial<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> Result<BiPoly<T>, Error> {
+    Error::check_finite(f.coeffs(), "f")?;
+    Error::check_finite(g.coeffs(), "g")?;
+    Ok(Tracked::s_poly(&Tracked::new(f.clone()), &Tracked::new(g.clone())).poly)
 }
 
 /// Stam's mutual reduction `R2(p, q)` (article §4.2, `Reduce_2` in `ray3.c`):
@@ -124,11 +143,9 @@ pub fn s_polynomial<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> BiPoly<T> {
 /// # Ok::<(), groebner::Error>(())
 /// ```
 pub fn r2<T: Scalar>(p: &BiPoly<T>, q: &BiPoly<T>) -> Result<(BiPoly<T>, BiPoly<T>), Error> {
+    Error::check_finite(p.coeffs(), "p")?;
+    Error::check_finite(q.coeffs(), "q")?;
     let (p, q) = (Tracked::new(p.clone()), Tracked::new(q.clone()));
-    p.check_finite("r2")
-        .map_err(|_| Error::NonFinite { what: "p" })?;
-    q.check_finite("r2")
-        .map_err(|_| Error::NonFinite { what: "q" })?;
     let (mut p, mut q) = r2_tracked(p, q)?;
     p.make_monic();
     q.make_monic();
@@ -207,7 +224,7 @@ mod tests {
         // the printed value is not even ≡ p modulo (F1, F2); see below).
         let (f1, f2) = article_pair();
         let p = qb(&[(1, 2, 2), (1, 1, 1), (1, 0, 0)]);
-        let nf = normal_form(&p, &[f1.clone(), f2.clone()]);
+        let nf = normal_form(&p, &[f1.clone(), f2.clone()]).unwrap();
         assert_eq!(
             nf,
             qb(&[(-1, 2, 1), (1, 1, 1), (1, 4, 0), (1, 0, 0)]),
@@ -236,19 +253,19 @@ mod tests {
             ]),
         ];
         assert_ne!(
-            normal_form(&p, &g),
-            normal_form(&printed, &g),
+            normal_form(&p, &g).unwrap(),
+            normal_form(&printed, &g).unwrap(),
             "erratum: not congruent"
         );
         // And NF(p, F) ≡ p, as a normal form must be.
         assert_eq!(
-            normal_form(&p, &g),
-            normal_form(&nf, &g),
+            normal_form(&p, &g).unwrap(),
+            normal_form(&nf, &g).unwrap(),
             "NF(p, F) ≡ p mod (F1, F2)"
         );
         // NF(p, G) computed by hand with sympy's reduced(): u⁷ − u⁶ + 2u².
         assert_eq!(
-            normal_form(&p, &g),
+            normal_form(&p, &g).unwrap(),
             qb(&[(1, 7, 0), (-1, 6, 0), (2, 2, 0)]),
             "NF(p, G)"
         );
@@ -260,7 +277,7 @@ mod tests {
         // A polynomial with many reducible terms: NF must leave none, and p − NF ∈ (F1, F2)
         // is checked by reducing to the same normal form modulo the Gröbner basis above.
         let p = qb(&[(3, 4, 3), (-2, 5, 2), (1, 3, 1), (7, 1, 2), (1, 0, 0)]);
-        let nf = normal_form(&p, &[f1.clone(), f2.clone()]);
+        let nf = normal_form(&p, &[f1.clone(), f2.clone()]).unwrap();
         let lms = [
             f1.leading_monomial().unwrap(),
             f2.leading_monomial().unwrap(),
@@ -274,7 +291,7 @@ mod tests {
         // Repeated single steps reach the same normal form.
         let mut r = p.clone();
         let mut steps = 0;
-        while let Some(next) = reduction_step(&r, &[f1.clone(), f2.clone()]) {
+        while let Some(next) = reduction_step(&r, &[f1.clone(), f2.clone()]).unwrap() {
             r = next;
             steps += 1;
         }
@@ -285,16 +302,19 @@ mod tests {
     #[test]
     fn article_s_polynomial() {
         let (f1, f2) = article_pair();
-        let sp = s_polynomial(&f1, &f2);
+        let sp = s_polynomial(&f1, &f2).unwrap();
         assert_eq!(
             sp,
             qb(&[(1, 3, 1), (1, 2, 1), (-1, 0, 1), (-1, 5, 0)]),
             "SP(F1, F2)"
         );
         // Non-monic inputs give the S-polynomial of their monic versions.
-        let sp3 = s_polynomial(&f1.scale(&q(3)), &f2.scale(&q(-5)));
+        let sp3 = s_polynomial(&f1.scale(&q(3)), &f2.scale(&q(-5))).unwrap();
         assert_eq!(sp3, sp, "scaling the inputs does not change SP");
-        assert!(s_polynomial(&f1, &BiPoly::zero()).is_zero(), "SP with zero");
+        assert!(
+            s_polynomial(&f1, &BiPoly::zero()).unwrap().is_zero(),
+            "SP with zero"
+        );
     }
 
     #[test]

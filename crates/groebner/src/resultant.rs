@@ -19,7 +19,15 @@ pub const MAX_MATRIX_SIZE: usize = 16;
 /// with `m = deg_v f`, `n = deg_v g`, the first `n` rows hold `f`'s coefficients from `v^m`
 /// down to `v^0`, each row shifted one column right of the previous, then `m` rows of `g`'s.
 /// Its determinant is `Res_v(f, g)`.
-pub fn sylvester_matrix_v<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> Vec<Vec<Poly<T>>> {
+///
+/// # Errors
+/// [`Error::NonFinite`] for a NaN or infinite coefficient.
+pub fn sylvester_matrix_v<T: Scalar>(
+    f: &BiPoly<T>,
+    g: &BiPoly<T>,
+) -> Result<Vec<Vec<Poly<T>>>, Error> {
+    Error::check_finite(f.coeffs(), "f")?;
+    Error::check_finite(g.coeffs(), "g")?;
     let (a, b) = (f.coeffs_in_v(), g.coeffs_in_v());
     let (m, n) = (f.deg_v(), g.deg_v());
     let size = m + n;
@@ -33,7 +41,7 @@ pub fn sylvester_matrix_v<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> Vec<Vec<Po
             rows.push(row);
         }
     }
-    rows
+    Ok(rows)
 }
 
 /// The resultant `Res_v(f, g)` by Sylvester's matrix: a polynomial in `u` that vanishes at `u0`
@@ -49,7 +57,8 @@ pub fn sylvester_matrix_v<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> Vec<Vec<Po
 /// coefficients, with the usual round-off of such sums; no threshold is applied.
 ///
 /// # Errors
-/// [`Error::MatrixTooLarge`] when `deg_v f + deg_v g >` [`MAX_MATRIX_SIZE`].
+/// [`Error::NonFinite`] for a NaN or infinite coefficient; [`Error::MatrixTooLarge`] when
+/// `deg_v f + deg_v g >` [`MAX_MATRIX_SIZE`].
 ///
 /// # Examples
 /// ```
@@ -66,10 +75,12 @@ pub fn sylvester_matrix_v<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> Vec<Vec<Po
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn sylvester_resultant_v<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> Result<Poly<T>, Error> {
+    Error::check_finite(f.coeffs(), "f")?;
+    Error::check_finite(g.coeffs(), "g")?;
     if f.is_zero() || g.is_zero() {
         return Ok(Poly::zero());
     }
-    poly_matrix_det(&sylvester_matrix_v(f, g))
+    poly_matrix_det(&sylvester_matrix_v(f, g)?)
 }
 
 /// The Bézout (Cayley) matrix of `f` and `g` in `v`: with `N = max(deg_v f, deg_v g)` and
@@ -77,7 +88,15 @@ pub fn sylvester_resultant_v<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> Result<
 /// `(f(v)g(w) − f(w)g(v)) / (v − w) = Σ_{i,j<N} B_ij v^i w^j`, so
 /// `B_ij = Σ_{q ≤ min(i,j), p = i+j+1−q ≤ N} (a_p b_q − a_q b_p)`.
 /// It is `N × N` (half of Sylvester's size) with entries of twice the `u`-degree.
-pub fn bezout_matrix_v<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> Vec<Vec<Poly<T>>> {
+///
+/// # Errors
+/// [`Error::NonFinite`] for a NaN or infinite coefficient.
+pub fn bezout_matrix_v<T: Scalar>(
+    f: &BiPoly<T>,
+    g: &BiPoly<T>,
+) -> Result<Vec<Vec<Poly<T>>>, Error> {
+    Error::check_finite(f.coeffs(), "f")?;
+    Error::check_finite(g.coeffs(), "g")?;
     let (a, b) = (f.coeffs_in_v(), g.coeffs_in_v());
     let n = f.deg_v().max(g.deg_v());
     let at = |v: &[Poly<T>], k: usize| v.get(k).cloned().unwrap_or_else(Poly::zero);
@@ -95,7 +114,7 @@ pub fn bezout_matrix_v<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> Vec<Vec<Poly<
             *entry = s;
         }
     }
-    m
+    Ok(m)
 }
 
 /// The resultant by Bézout's matrix, `(−1)^{N(N−1)/2} · det B` with `N = max(deg_v)`.
@@ -109,8 +128,11 @@ pub fn bezout_matrix_v<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> Vec<Vec<Poly<
 /// As [`sylvester_resultant_v`].
 ///
 /// # Errors
-/// [`Error::MatrixTooLarge`] when `N >` [`MAX_MATRIX_SIZE`].
+/// [`Error::NonFinite`] for a NaN or infinite coefficient; [`Error::MatrixTooLarge`] when
+/// `N >` [`MAX_MATRIX_SIZE`].
 pub fn bezout_resultant_v<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> Result<Poly<T>, Error> {
+    Error::check_finite(f.coeffs(), "f")?;
+    Error::check_finite(g.coeffs(), "g")?;
     if f.is_zero() || g.is_zero() {
         return Ok(Poly::zero());
     }
@@ -122,7 +144,7 @@ pub fn bezout_resultant_v<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> Result<Pol
     if let Some(r) = bezout_bicubic_resultant(f, g) {
         return Ok(r);
     }
-    let det = poly_matrix_det(&bezout_matrix_v(f, g))?;
+    let det = poly_matrix_det(&bezout_matrix_v(f, g)?)?;
     Ok(if (n * (n - 1) / 2) % 2 == 1 {
         -det
     } else {
@@ -142,11 +164,15 @@ pub fn bezout_resultant_v<T: Scalar>(f: &BiPoly<T>, g: &BiPoly<T>) -> Result<Pol
 /// memory `2ⁿ` polynomials.
 ///
 /// # Errors
-/// [`Error::MatrixTooLarge`] when `n >` [`MAX_MATRIX_SIZE`].
+/// [`Error::MatrixTooLarge`] when `n >` [`MAX_MATRIX_SIZE`]; [`Error::NonFinite`] for a NaN
+/// or infinite coefficient.
 ///
 /// # Panics
 /// If the matrix is not square (a caller bug).
 pub fn poly_matrix_det<T: Scalar>(m: &[Vec<Poly<T>>]) -> Result<Poly<T>, Error> {
+    m.iter()
+        .flatten()
+        .try_for_each(|p| Error::check_finite(p.coeffs(), "matrix"))?;
     let n = m.len();
     if n > MAX_MATRIX_SIZE {
         return Err(Error::MatrixTooLarge {
@@ -267,6 +293,7 @@ mod tests {
             let fs = BiPoly::from_poly_v(&a);
             let gs = BiPoly::from_poly_v(&b);
             let scalar: Vec<Vec<Rat>> = sylvester_matrix_v(&fs, &gs)
+                .unwrap()
                 .into_iter()
                 .map(|row| row.into_iter().map(|p| p.coeff(0)).collect())
                 .collect();

@@ -14,7 +14,7 @@ use crate::bicubic::Bicubic;
 use crate::buchberger::{buchberger_tracked, reduce_tracked_keep};
 use crate::driver::{
     Buffers, Certifiable, Elimination, certify, eliminate_degenerate, extreme_scale, find_roots,
-    finish_resultant, originals, widened,
+    finish_resultant, no_common_root_at_all, originals, widened,
 };
 use crate::error::Error;
 use crate::options::{Method, Root, Solution, SolveOptions, SolveStats, Verdict, check_options};
@@ -98,15 +98,16 @@ pub fn solve<T: SolveScalar>(
             thread_local! {
                 static WS: RefCell<SolveWorkspace> = RefCell::new(SolveWorkspace::new());
             }
-            return WS.with(|ws| {
+            let sol = WS.with(|ws| {
                 let ws = &mut ws.borrow_mut();
                 let (verdict, stats) = solve_bicubic(ws, &a, &b, opts)?;
-                Ok(Solution {
+                Ok::<_, Error>(Solution {
                     roots: ws.buf.roots.clone(),
                     verdict,
                     stats,
                 })
-            });
+            })?;
+            return Ok(roots_at_infinity(f1, f2, sol));
         }
     }
     if !T::EXACT {
@@ -122,10 +123,32 @@ pub fn solve<T: SolveScalar>(
         let (s1, s2) = (factor(f1), factor(f2));
         if s1 != 1.0 || s2 != 1.0 {
             let by = |f: &BiPoly<T>, s: f64| f.scale(&T::from_f64(s).expect("a power of two"));
-            return solve_general(&by(f1, s1), &by(f2, s2), opts);
+            let sol = solve_general(&by(f1, s1), &by(f2, s2), opts)?;
+            return Ok(roots_at_infinity(f1, f2, sol));
         }
     }
-    solve_general(f1, f2, opts)
+    let sol = solve_general(f1, f2, opts)?;
+    Ok(if T::EXACT {
+        sol // decided in find_roots
+    } else {
+        roots_at_infinity(f1, f2, sol)
+    })
+}
+
+/// An `f64` solve that found no root: [`Verdict::NoCommonRoot`] when the system has no common
+/// root at all (issue 10, item 5: a non-constant resultant whose roots are all "at
+/// `v = ∞`"), decided exactly by `no_common_root_at_all` (driver.rs), which first tries the
+/// quick modular proof that a root exists. Only here, in the public `solve`: the per-ray
+/// [`solve_ray_patch`] keeps `Finite` with no roots, which the tracer reads the same way.
+fn roots_at_infinity<T: SolveScalar>(
+    f1: &BiPoly<T>,
+    f2: &BiPoly<T>,
+    mut sol: Solution,
+) -> Solution {
+    if sol.verdict == Verdict::Finite && sol.roots.is_empty() && no_common_root_at_all([f1, f2]) {
+        sol.verdict = Verdict::NoCommonRoot;
+    }
+    sol
 }
 
 /// [`solve`] by the general path (any degree, any method, exact or `f64`), on checked input.
@@ -190,7 +213,9 @@ fn eliminate_groebner_exact<T: SolveScalar>(
     let Some(eliminant) = basis.eliminant() else {
         return Ok(Elimination::Verdict(Verdict::Infinite));
     };
-    if !basis.has_finitely_many_roots() && crate::buchberger::is_groebner_basis(basis.elements()) {
+    if !basis.has_finitely_many_roots()
+        && crate::buchberger::satisfies_buchberger_criterion(basis.elements())
+    {
         return Ok(Elimination::Verdict(Verdict::Infinite));
     }
     buf.elim = eliminant.into_coeffs();
@@ -332,7 +357,10 @@ pub struct RayPatchSolution<'w> {
 /// For patches of degree ≤ 3 in `u` and `v` solved by [`Method::Stam`] or
 /// [`Method::BezoutResultant`] it allocates nothing once `ws` has warmed up; the other cases
 /// run the general path and copy its result into `ws`. The roots, verdict and statistics are
-/// those of `solve(&sys.f1, &sys.f2, opts)` on the same system.
+/// those of `solve(&sys.f1, &sys.f2, opts)` on the same system, except that the fixed-size
+/// path does not decide whether a system without roots has no common root at all: it says
+/// [`Verdict::Finite`] with no roots where `solve` may say [`Verdict::NoCommonRoot`] (the
+/// tracer reads both as a miss; the decision costs more than the solve).
 ///
 /// # Errors
 /// As [`ray_patch_system`](crate::ray_patch_system) and [`solve`].

@@ -5,10 +5,11 @@
 use std::time::{Duration, Instant};
 
 use groebner::{
-    Error, Method, SolveOptions, SolveWorkspace, Verdict, buchberger, is_groebner_basis, r2, solve,
-    solve_ray_patch, stam_basis,
+    Error, Method, SolveOptions, SolveWorkspace, Verdict, bezout_matrix_v, bezout_resultant_v,
+    buchberger, is_groebner_basis, normal_form, poly_matrix_det, r2, reduce_basis, reduction_step,
+    s_polynomial, solve, solve_ray_patch, stam_basis, sylvester_matrix_v, sylvester_resultant_v,
 };
-use poly::{BiPoly, QBiPoly, Rat};
+use poly::{BiPoly, Poly, QBiPoly, Rat};
 
 const METHODS: [Method; 4] = [
     Method::Stam,
@@ -186,7 +187,7 @@ fn exact_buchberger_on_a_degree_six_pair_finishes() {
     ]);
     let g = buchberger(&[f1, f2]).unwrap();
     assert!((2..=3).contains(&g.len()), "reduced basis size {}", g.len());
-    assert!(is_groebner_basis(g.elements()), "a Gröbner basis");
+    assert!(is_groebner_basis(g.elements()).unwrap(), "a Gröbner basis");
 }
 
 /// Issue 10, item 5. Caught: `−u² + 3uv + v, 2u² − 6uv − 2v − 2` (`F2 = −2·F1 − 2`) have no
@@ -194,18 +195,33 @@ fn exact_buchberger_on_a_degree_six_pair_finishes() {
 /// `−2(3u + 1)` vanishes only where both leading coefficients in `v` do ("at `v = ∞`").
 #[test]
 fn no_common_root_behind_a_nonconstant_resultant() {
-    // Exact mode only: the f64 decision is not done (driver.rs, `no_common_root_at_all`).
     let f1 = qb(&[(-1, 2, 0), (3, 1, 1), (1, 0, 1)]);
     let f2 = qb(&[(2, 2, 0), (-6, 1, 1), (-2, 0, 1), (-2, 0, 0)]);
     for (lo, hi) in [(0.0, 1.0), (-2.0, 2.0)] {
-        for m in METHODS {
-            let sol = solve(&f1, &f2, &boxed(m, lo, hi)).unwrap();
-            assert_eq!(
-                sol.verdict,
-                Verdict::NoCommonRoot,
-                "exact {m:?} on [{lo}, {hi}]²"
-            );
-        }
+        assert_verdict(&f1, &f2, lo, hi, Verdict::NoCommonRoot, "F2 = −2·F1 − 2");
+    }
+}
+
+/// Issue 10, item 5, in `f64`. Caught: the `f64` `solve` still said `Finite` with 0 roots for
+/// the system above (the exact decision was skipped there because it cost milliseconds per
+/// system); it now decides after a quick modular proof that ordinary systems have a root. The
+/// same leading coefficients with a different constant term (`F2 = −2·F1 − 2 + 4v`) do have
+/// a common root (outside the box) and must stay `Finite` with no roots.
+#[test]
+fn f64_solve_says_no_common_root_at_infinity_only() {
+    let f1 = qb(&[(-1, 2, 0), (3, 1, 1), (1, 0, 1)]).to_f64();
+    let f2 = qb(&[(2, 2, 0), (-6, 1, 1), (-2, 0, 1), (-2, 0, 0)]).to_f64();
+    let f2_root = qb(&[(2, 2, 0), (-6, 1, 1), (2, 0, 1), (-2, 0, 0)]).to_f64();
+    for m in METHODS {
+        let opts = boxed(m, 0.0, 1.0);
+        let none = solve(&f1, &f2, &opts).unwrap();
+        assert_eq!(none.verdict, Verdict::NoCommonRoot, "f64 {m:?}: {none:?}");
+        let outside = solve(&f1, &f2_root, &opts).unwrap();
+        assert_eq!(
+            (outside.verdict, outside.roots.len()),
+            (Verdict::Finite, 0),
+            "f64 {m:?}: a common root outside the box: {outside:?}"
+        );
     }
 }
 
@@ -345,6 +361,54 @@ fn nan_and_infinite_coefficients_are_refused() {
             );
         }
     }
+}
+
+/// Issue 10 (closing note). Caught: `normal_form` and `s_polynomial` took NaN and infinite
+/// coefficients and returned NaN polynomials (the other public entries refused them). Every
+/// public algebra entry now refuses them with `Error::NonFinite`.
+#[test]
+fn algebra_entries_refuse_non_finite_coefficients() {
+    let ok = BiPoly::from_terms([(1.0, 0, 1), (-1.0, 1, 0)]);
+    let circle = BiPoly::from_terms([(1.0, 2, 0), (1.0, 0, 2), (-0.5, 0, 0)]);
+    let refused = |r: Result<(), Error>, what: &str| {
+        assert!(matches!(r, Err(Error::NonFinite { .. })), "{what}: {r:?}");
+    };
+    for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        let p = BiPoly::from_terms([(1.0, 1, 1), (bad, 2, 0), (1.0, 0, 0)]);
+        let pair = [ok.clone(), p.clone()];
+        refused(
+            normal_form(&p, std::slice::from_ref(&ok)).map(drop),
+            "normal_form p",
+        );
+        refused(normal_form(&circle, &pair).map(drop), "normal_form basis");
+        refused(s_polynomial(&p, &ok).map(drop), "s_polynomial f");
+        refused(s_polynomial(&ok, &p).map(drop), "s_polynomial g");
+        refused(
+            reduction_step(&p, std::slice::from_ref(&ok)).map(drop),
+            "reduction_step p",
+        );
+        refused(
+            reduction_step(&circle, &pair).map(drop),
+            "reduction_step basis",
+        );
+        refused(reduce_basis(&pair).map(drop), "reduce_basis");
+        refused(is_groebner_basis(&pair).map(drop), "is_groebner_basis");
+        refused(sylvester_matrix_v(&ok, &p).map(drop), "sylvester_matrix_v");
+        refused(bezout_matrix_v(&p, &ok).map(drop), "bezout_matrix_v");
+        refused(
+            sylvester_resultant_v(&p, &ok).map(drop),
+            "sylvester_resultant_v",
+        );
+        refused(bezout_resultant_v(&ok, &p).map(drop), "bezout_resultant_v");
+        let m = vec![vec![Poly::new(vec![bad])]];
+        refused(poly_matrix_det(&m).map(drop), "poly_matrix_det");
+    }
+    // The same calls on finite input succeed: the refusal is about the NaN, not the call.
+    assert!(
+        normal_form(&circle, std::slice::from_ref(&ok)).is_ok(),
+        "finite normal form"
+    );
+    assert!(s_polynomial(&circle, &ok).is_ok(), "finite S-polynomial");
 }
 
 /// Issue 13, item 16. Caught: NaN ranges and tolerances must be refused before any work.

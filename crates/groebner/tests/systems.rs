@@ -219,14 +219,14 @@ fn check_stam_buchberger(
     let stam = stam_basis(&f1, &f2).unwrap();
     let buch = buchberger(&[f1.clone(), f2.clone()]).unwrap();
     prop_assert!(
-        is_groebner_basis(buch.elements()),
+        is_groebner_basis(buch.elements()).unwrap(),
         "Buchberger's output: {buch:?}"
     );
     let completed = buchberger(stam.elements()).unwrap();
     prop_assert_eq!(&completed, &buch, "same reduced basis, same ideal");
-    if is_groebner_basis(stam.elements()) {
+    if is_groebner_basis(stam.elements()).unwrap() {
         prop_assert_eq!(
-            reduce_basis(stam.elements()),
+            reduce_basis(stam.elements()).unwrap(),
             buch.elements().to_vec(),
             "reduced Stam"
         );

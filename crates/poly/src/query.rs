@@ -181,8 +181,17 @@ impl<'p, 's> RootQuery<'p, 's> {
         self,
         f: impl FnOnce(&Poly<f64>, (f64, f64), &RootOptions, &mut RootStats) -> R,
     ) -> R {
-        let mut local = RootStats::default();
-        let stats = self.stats.unwrap_or(&mut local);
+        // Zeroed only when the caller keeps no statistics: `RootStats` is ~300 bytes, and
+        // clearing it on every query was a measurable share of a torus ray (a memset per
+        // query; docs/speed.md, "Redesign before/after").
+        let mut local;
+        let stats = match self.stats {
+            Some(s) => s,
+            None => {
+                local = RootStats::default();
+                &mut local
+            }
+        };
         match self.owned {
             Some(p) => f(p, self.range, &self.opts, stats),
             None => with_scratch_poly(&BORROWED, self.coeffs, |p| {

@@ -57,7 +57,7 @@
 //! # Examples
 //! ```
 //! use glam::DVec3;
-//! use render::scene::{Light, Object, Scene, ShapeKind};
+//! use render::scene::{Light, Object, Scene, ShapeKind, ValidScene};
 //! use render::{PreparedScene, RenderSettings, render};
 //!
 //! let mut scene = Scene::default();
@@ -68,6 +68,7 @@
 //!     minor: 1.0,
 //! }));
 //! scene.lights.push(Light { source: DVec3::new(5.0, -5.0, 10.0), color: DVec3::ONE });
+//! let scene = ValidScene::new(scene)?;
 //! let prepared = PreparedScene::new(&scene)?;
 //! let settings = RenderSettings { size: [32, 32], resolution: [1, 1], samples: 1, depth: true };
 //! let out = render(&prepared, &scene.camera, &settings, &|_| {});

@@ -1,4 +1,4 @@
-//! [`render_scene`]: validate, prepare, trace and write — one call for the CLI and for tests.
+//! [`render_scene`]: prepare, trace and write — one call for the CLI and for tests.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -8,7 +8,7 @@ use crate::film::{RenderOutput, RenderSettings, render_with_cancel};
 use crate::options::RenderOptions;
 use crate::output::{OutputError, PendingOutputs, encode_pfm, encode_png};
 use crate::prepared::PreparedScene;
-use crate::scene::{Scene, SceneInvalid, check_image_size};
+use crate::scene::{SceneInvalid, ValidScene, check_image_size};
 use crate::stats::PhaseTimes;
 
 /// Why a render failed.
@@ -60,7 +60,7 @@ pub struct RenderReport {
 /// [`RenderError::Option`] for a size beyond the pixel limit or zero samples,
 /// [`RenderError::Invalid`] when the scene breaks an invariant.
 pub fn prepare_render(
-    scene: &Scene,
+    scene: &ValidScene,
     opts: &RenderOptions,
 ) -> Result<(PreparedScene, RenderSettings), RenderError> {
     let size = opts.image_size(scene);
@@ -85,7 +85,7 @@ pub fn prepare_render(
 /// Every output path is checked before the render starts (see [`PendingOutputs`]), and the
 /// files are replaced only when all of them were written: a failed run changes no file.
 pub fn render_scene(
-    scene: &Scene,
+    scene: &ValidScene,
     scene_path: Option<&Path>,
     opts: &RenderOptions,
     progress: &(dyn Fn(u32, u32) + Sync),
@@ -96,7 +96,7 @@ pub fn render_scene(
 /// [`render_scene`] that stops, writing nothing, when `cancel` is cancelled (see
 /// [`render_with_cancel`]).
 pub fn render_scene_with_cancel(
-    scene: &Scene,
+    scene: &ValidScene,
     scene_path: Option<&Path>,
     opts: &RenderOptions,
     progress: &(dyn Fn(u32, u32) + Sync),

@@ -5,7 +5,7 @@ use crate::aggregate::{Aggregate, PRUNE_SLACK_REL};
 use crate::geometry::{Bounds3, Transform};
 use crate::methods::{PatchMethod, RootMethods};
 use crate::scene::{
-    BoundingVolume, Light, Material, Scene, SceneInvalid, ShapeKind, Texture, World,
+    BoundingVolume, Light, Material, SceneInvalid, ShapeKind, Texture, ValidScene, World,
 };
 use crate::surface::{
     AaBox, Algebraic, BezierMesh, Implicit, ImplicitFn, Plane, Polygon, Sphere, Superquadric,
@@ -44,22 +44,29 @@ const _: () = assert!(
 );
 
 impl PreparedScene {
-    /// Validates `scene` and builds its surfaces with the default solvers (certified Bernstein
-    /// isolation with Newton–bisection; each Bézier object's own `Method`).
-    pub fn new(scene: &Scene) -> Result<Self, SceneInvalid> {
+    /// Builds the surfaces of `scene` with the default solvers (certified Bernstein isolation
+    /// with Newton–bisection; each Bézier object's own `Method`). The scene was validated when
+    /// it became a [`ValidScene`] and is not checked again.
+    ///
+    /// # Errors
+    /// [`SceneInvalid::Object`] for geometry that passed the model's checks but cannot be
+    /// placed (a singular transform) or built (degenerate geometry).
+    pub fn new(scene: &ValidScene) -> Result<Self, SceneInvalid> {
         Self::with_methods(scene, RootMethods::default(), None)
     }
 
-    /// Validates `scene` and builds its surfaces: implicit surfaces find roots with `roots`,
-    /// Bézier objects eliminate with `patch_method` when given (`render --patch-method`), else
-    /// with their own `Method`. This is where the solver choices reach the surfaces, once per
-    /// render (`crate::methods`).
+    /// Builds the surfaces of `scene`: implicit surfaces find roots with `roots`, Bézier
+    /// objects eliminate with `patch_method` when given (`render --patch-method`), else with
+    /// their own `Method`. This is where the solver choices reach the surfaces, once per render
+    /// (`crate::methods`).
+    ///
+    /// # Errors
+    /// As [`PreparedScene::new`].
     pub fn with_methods(
-        scene: &Scene,
+        scene: &ValidScene,
         roots: RootMethods,
         patch_method: Option<PatchMethod>,
     ) -> Result<Self, SceneInvalid> {
-        scene.validate()?;
         let methods = Methods {
             roots,
             patch_method,
@@ -231,7 +238,7 @@ mod tests {
 
     use super::*;
     use crate::geometry::Ray;
-    use crate::scene::{ControlNet, Object};
+    use crate::scene::{ControlNet, Object, Scene};
     use crate::workspace::Workspace;
 
     /// `render --isolation` reaches cones and cylinders: they were built with the default
@@ -248,6 +255,7 @@ mod tests {
             apex_radius: 0.5,
             caps: true,
         }));
+        let scene = ValidScene::new(scene).unwrap();
         let ray = Ray::new(DVec3::new(0.1, -5.0, 1.0), DVec3::new(0.0, 1.0, 0.05));
         let stats_with = |isolation| {
             let roots = RootMethods {
@@ -287,6 +295,7 @@ mod tests {
             patches: vec![ControlNet::new(1, 1, saddle.to_vec()).unwrap()],
             method: PatchMethod::Groebner,
         }));
+        let scene = ValidScene::new(scene).unwrap();
         let ray = Ray::new(DVec3::new(0.3, -0.4, 5.0), DVec3::new(0.01, 0.02, -1.0));
         let basis_free_solves = |patch_method| {
             let prepared =

@@ -363,7 +363,7 @@ fn render_job(
     };
     let ast = parse_syntax(text, &file).map_err(located)?;
     scene_info::confine_files(&ast, &state.scenes_dir).map_err(refused)?;
-    let mut scene = build(&ast, &file).map_err(located)?;
+    let scene = build(&ast, &file).map_err(located)?;
     scene_info::check_degree(&ast, &scene, state.limits.max_degree).map_err(refused)?;
     let parse = parse_start.elapsed();
 
@@ -381,14 +381,16 @@ fn render_job(
     let scale = req.scale.clamp(1, MAX_SCALE);
     let mut opts = RenderOptions::default();
     if scale > 1 {
-        // A preview traces every pixel of the small image: Stam's `Resolution` cells would
-        // coarsen it a second time.
         opts.size = Some([w.div_ceil(scale), h.div_ceil(scale)]);
-        scene.viewport.resolution = [1, 1];
     }
     let setup_start = Instant::now();
-    let (prepared, settings) = render::prepare_render(&scene, &opts)
+    let (prepared, mut settings) = render::prepare_render(&scene, &opts)
         .map_err(|e| Failure::new(StatusCode::UNPROCESSABLE_ENTITY, chain(&e)))?;
+    if scale > 1 {
+        // A preview traces every pixel of the small image: Stam's `Resolution` cells would
+        // coarsen it a second time.
+        settings.resolution = [1, 1];
+    }
     let setup = setup_start.elapsed();
     let trace_start = Instant::now();
     let output = state.pool.install(|| {

@@ -19,8 +19,7 @@ use super::lexer::end_position;
 use super::model::MAX_SUPERQUADRIC_POWER;
 use super::model::{
     BoundingVolume, CameraSpec, CheckerTexture, Illumination, ImageTexture, Light, LookAtCamera,
-    Material, Object, ObjectTransform, Rgb, Scene, SceneInvalid, ShapeKind, StamCamera, Texture,
-    Viewport, World,
+    Material, Object, ObjectTransform, Rgb, Scene, ShapeKind, StamCamera, Texture, Viewport, World,
 };
 use super::source::{
     MAX_CONTROL_POINT_BYTES, MAX_SCENE_BYTES, MAX_TEXTURE_BYTES, MAX_TEXTURE_TEXELS, read_bounded,
@@ -28,6 +27,7 @@ use super::source::{
 use super::syntax::{
     Block, Command, Entry, Key, SceneAst, ShapeType, TextureType, Value, parse_syntax,
 };
+use super::valid_scene::{SceneSpans, ValidScene};
 use crate::methods::PatchMethod;
 use crate::trivariate::Poly3;
 
@@ -96,7 +96,7 @@ pub const MAX_RECURSION_DEPTH: u32 = 64;
 /// assert_eq!(err.to_string(), "x.scene:1:22: unknown key `Kx` in #object");
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn parse(text: &str, file: &Path) -> Result<Scene, SceneError> {
+pub fn parse(text: &str, file: &Path) -> Result<ValidScene, SceneError> {
     let ast = parse_syntax(text, file)?;
     build(&ast, file)
 }
@@ -116,7 +116,7 @@ pub fn parse(text: &str, file: &Path) -> Result<Scene, SceneError> {
 /// println!("{} objects", scene.objects.len());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn load(path: &Path) -> Result<Scene, SceneError> {
+pub fn load(path: &Path) -> Result<ValidScene, SceneError> {
     let bytes = read_bounded(path, MAX_SCENE_BYTES).map_err(|source| SceneError::Read {
         path: path.to_owned(),
         source,
@@ -138,7 +138,7 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
     parse(text, path)
 }
 
-/// Builds a validated [`Scene`] from a syntax tree; `file` is the scene file's path, whose
+/// Builds a validated scene ([`ValidScene`]) from a syntax tree; `file` is the scene file's path, whose
 /// directory is the base for texture file names.
 ///
 /// Accepts any tree, including hand-made ones: values of the wrong kind for their key are
@@ -146,7 +146,7 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
 ///
 /// # Errors
 /// As [`parse`], except for syntax errors.
-pub fn build(ast: &SceneAst, file: &Path) -> Result<Scene, SceneError> {
+pub fn build(ast: &SceneAst, file: &Path) -> Result<ValidScene, SceneError> {
     let base = file.parent().map(Path::to_path_buf).unwrap_or_default();
     let mut scene = Scene::default();
     let mut seen: Vec<(Command, &Span)> = Vec::new();
@@ -200,13 +200,13 @@ pub fn build(ast: &SceneAst, file: &Path) -> Result<Scene, SceneError> {
             Command::Camera => camera = Some(build_camera(&mut fields)?),
             Command::Light => {
                 scene.lights.push(build_light(&mut fields)?);
-                light_spans.push(&block.command.span);
+                light_spans.push(block.command.span.clone());
             }
             Command::Object => {
                 scene
                     .objects
                     .push(build_object(&mut fields, &texture_names, &base)?);
-                object_spans.push(&block.command.span);
+                object_spans.push(block.command.span.clone());
             }
             Command::Viewport => scene.viewport = build_viewport(&mut fields)?,
             Command::Save => {
@@ -223,32 +223,21 @@ pub fn build(ast: &SceneAst, file: &Path) -> Result<Scene, SceneError> {
         ));
     };
     scene.camera = camera;
-    // Backstop: the model's own checks, reported at the block they concern (each shape was
+    // The scene-level checks, once, reported at the block they concern (each shape was
     // checked as its block was read).
-    scene.validate_except_shapes().map_err(|e| {
-        let span = match &e {
-            SceneInvalid::Object { index, .. } => object_spans.get(*index).copied(),
-            SceneInvalid::Light { index, .. } => light_spans.get(*index).copied(),
-            SceneInvalid::Camera { .. } => seen
-                .iter()
-                .find(|(c, _)| *c == Command::Camera)
-                .map(|s| s.1),
-            SceneInvalid::Viewport { .. } => seen
-                .iter()
-                .find(|(c, _)| *c == Command::Viewport)
-                .map(|s| s.1),
-            SceneInvalid::World { .. } => {
-                seen.iter().find(|(c, _)| *c == Command::World).map(|s| s.1)
-            }
-        };
-        SceneError::at(
-            span.unwrap_or(&ast.end),
-            ErrorKind::Model {
-                reason: e.to_string(),
-            },
-        )
-    })?;
-    Ok(scene)
+    let find = |command| {
+        seen.iter()
+            .find(|(c, _)| *c == command)
+            .map(|(_, span)| (*span).clone())
+    };
+    let spans = SceneSpans {
+        objects: object_spans,
+        lights: light_spans,
+        camera: find(Command::Camera),
+        viewport: find(Command::Viewport),
+        world: find(Command::World),
+    };
+    spans.validate(scene, &ast.end)
 }
 
 fn invalid(span: &Span, key: Key, reason: impl Into<String>) -> SceneError {
@@ -1290,14 +1279,15 @@ mod tests {
 
     const CAMERA: &str = "#camera Eye = (0,-8,5) LookAt = (0,0,0) ViewField = 50\n";
 
-    fn scene(text: &str) -> Result<Scene, SceneError> {
+    fn scene(text: &str) -> Result<ValidScene, SceneError> {
         parse(&format!("{CAMERA}{text}"), Path::new("b.scene"))
     }
 
     fn only_object(text: &str) -> Object {
         let s = scene(text).unwrap();
         assert_eq!(s.objects.len(), 1, "one object in {text:?}");
-        s.objects
+        s.into_scene()
+            .objects
             .into_iter()
             .next()
             .unwrap_or_else(|| unreachable!())

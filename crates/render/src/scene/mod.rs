@@ -16,6 +16,7 @@ mod nff;
 mod print;
 mod source;
 mod syntax;
+mod valid_scene;
 
 pub use bpt::{BptError, MAX_BPT_PATCHES, parse_bpt};
 pub use control_net::{ControlNet, MAX_PATCH_DEGREE, PatchError};
@@ -40,3 +41,4 @@ pub use syntax::{
     Block, Command, Entry, Key, MAX_EXPR_DEPTH, MAX_NESTING, SceneAst, ShapeType, TextureType,
     Value, parse_syntax,
 };
+pub use valid_scene::ValidScene;

@@ -662,14 +662,15 @@ impl InvalidModel {
 impl Scene {
     /// Checks every invariant the tracer relies on: shapes ([`ShapeKind::validate`]),
     /// texture references, camera, viewport and lights. The error names the object or block.
+    /// [`ValidScene::new`](super::ValidScene::new) runs it; the loaders run it once, at the end.
     pub fn validate(&self) -> Result<(), SceneInvalid> {
         self.check(true)
     }
 
-    /// [`Scene::validate`] without the shapes' own checks, for a builder that ran
-    /// [`ShapeKind::validate`] on each shape as it read it (the scene language does, to point
-    /// at the offending key), so that no shape is checked twice.
-    pub fn validate_except_shapes(&self) -> Result<(), SceneInvalid> {
+    /// [`Scene::validate`] without the shapes' own checks, for a loader that ran
+    /// [`ShapeKind::validate`] on each shape as it read it (both loaders do, to point at the
+    /// offending key), so that no shape is checked twice.
+    pub(super) fn validate_except_shapes(&self) -> Result<(), SceneInvalid> {
         self.check(false)
     }
 

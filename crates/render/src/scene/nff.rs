@@ -16,10 +16,12 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use super::error::{ErrorKind, SceneError, Span};
+use super::lexer::end_position;
 use super::model::{
     CameraSpec, Illumination, Light, LookAtCamera, Material, Object, Rgb, Scene, ShapeKind,
     Viewport,
 };
+use super::valid_scene::{SceneSpans, ValidScene};
 
 /// Most vertices a `p` or `pp` entity may declare: far above any SPD polygon (the gears'
 /// 144-gons), and low enough that a corrupt count cannot ask for gigabytes.
@@ -101,7 +103,7 @@ pub fn nff_material(color: Rgb, kd: f64, ks: f64, shine: f64, t: f64, ior: f64) 
 /// assert_eq!(err.to_string(), "x.nff:1:7: expected the sphere's centre (a number), found `zero`");
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn parse_nff(text: &str, file: &Path) -> Result<Scene, SceneError> {
+pub fn parse_nff(text: &str, file: &Path) -> Result<ValidScene, SceneError> {
     let mut r = Reader {
         lines: text.split('\n').enumerate(),
         file: Arc::from(file),
@@ -116,6 +118,7 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<Scene, SceneError> {
     // Lights without a colour share a unit total intensity, 1/√n each (as the SPD's POV-Ray
     // writer does), set once all are read.
     let mut uncoloured = Vec::new();
+    let mut spans = SceneSpans::default();
     while let Some(mut line) = r.next_line() {
         let Some((keyword, at)) = line.word() else {
             continue; // unreachable: `next_line` skips lines without words
@@ -124,9 +127,12 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<Scene, SceneError> {
             "v" => {
                 line.finish()?;
                 read_view(&mut r, &line, &mut scene)?;
+                spans.camera = Some(r.span(&line, at));
+                spans.viewport = spans.camera.clone();
             }
             "b" => {
                 scene.world.background = line.vector("the background colour")?;
+                spans.world = Some(r.span(&line, at));
                 line.finish()?;
             }
             "l" => {
@@ -139,6 +145,7 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<Scene, SceneError> {
                 };
                 line.finish()?;
                 scene.lights.push(Light { source, color });
+                spans.lights.push(r.span(&line, at));
             }
             "f" => {
                 let color = line.vector("the fill colour")?;
@@ -174,7 +181,7 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<Scene, SceneError> {
                 let radius = line.number("the sphere's radius")?.abs();
                 line.finish()?;
                 let shape = ShapeKind::Sphere { center, radius };
-                push(&mut scene, shape, &material, &r.span(&line, at))?;
+                push(&mut scene, &mut spans, shape, &material, r.span(&line, at))?;
             }
             "c" => {
                 line.finish()?;
@@ -193,7 +200,7 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<Scene, SceneError> {
                     apex_radius: ra,
                     caps: false,
                 };
-                push(&mut scene, shape, &material, &r.span(&line, at))?;
+                push(&mut scene, &mut spans, shape, &material, r.span(&line, at))?;
             }
             "p" | "pp" => {
                 let smooth = keyword == "pp";
@@ -218,7 +225,7 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<Scene, SceneError> {
                     },
                     (false, _) => ShapeKind::Polygon { vertices },
                 };
-                push(&mut scene, shape, &material, &r.span(&line, at))?;
+                push(&mut scene, &mut spans, shape, &material, r.span(&line, at))?;
             }
             other => {
                 return Err(SceneError::at(
@@ -235,15 +242,17 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<Scene, SceneError> {
     for i in uncoloured {
         scene.lights[i].color = Rgb::splat(share);
     }
-    Ok(scene)
+    spans.validate(scene, &end_position(text, Arc::from(file)))
 }
 
-/// Adds an object after checking its shape, reporting a degenerate one at `span`.
+/// Adds an object after checking its shape, reporting a degenerate one at `span`, and
+/// records `span` for the scene-level checks at the end of the load.
 fn push(
     scene: &mut Scene,
+    spans: &mut SceneSpans,
     shape: ShapeKind,
     material: &Material,
-    span: &Span,
+    span: Span,
 ) -> Result<(), SceneError> {
     shape.validate().map_err(|e| {
         // The model names the scene-language key; NFF has none, so say what it is.
@@ -253,7 +262,7 @@ fn push(
             format!("{} {}", e.key.to_lowercase(), e.reason)
         };
         SceneError::at(
-            span,
+            &span,
             ErrorKind::InvalidValue {
                 key: shape.type_name().to_lowercase(),
                 reason,
@@ -263,6 +272,7 @@ fn push(
     let mut object = Object::new(shape);
     object.material = material.clone();
     scene.objects.push(object);
+    spans.objects.push(span);
     Ok(())
 }
 
