@@ -47,16 +47,10 @@ const PARALLEL_MIN_ITEMS: usize = 4096;
 /// the brute-force one.
 pub const PRUNE_SLACK_REL: f64 = 2e-9;
 
-/// One node of the flattened tree: 36 bytes (its box in `f32`), where an `f64` box made it 64,
-/// so that more of the tree stays in cache and a large scene's tree takes about half the
-/// memory (`paper-notes/bvh.md` §3).
+/// One node of the flattened tree.
 #[derive(Clone, Copy, Debug)]
 struct Node {
-    /// Lowest corner of the node's box, rounded down to `f32`.
-    lo: [f32; 3],
-    /// Highest corner, rounded up: the `f32` box holds the `f64` one, so the slab test stays
-    /// conservative.
-    hi: [f32; 3],
+    bounds: Bounds3,
     /// Leaf: first item in [`Bvh::order`]. Inner: index of the second child (the first child
     /// is the next node).
     offset: u32,
@@ -64,36 +58,6 @@ struct Node {
     count: u32,
     /// Split axis of an inner node.
     axis: u8,
-}
-
-impl Node {
-    fn new(bounds: &Bounds3, offset: u32, count: u32, axis: u8) -> Self {
-        // `as f32` rounds to nearest (overflowing to ±∞, still outward); step one f32 outward
-        // when that went inward.
-        let down = |x: f64| {
-            let f = x as f32;
-            if f64::from(f) > x { f.next_down() } else { f }
-        };
-        let up = |x: f64| {
-            let f = x as f32;
-            if f64::from(f) < x { f.next_up() } else { f }
-        };
-        let (a, b) = (bounds.min, bounds.max);
-        Node {
-            lo: [down(a.x), down(a.y), down(a.z)],
-            hi: [up(b.x), up(b.y), up(b.z)],
-            offset,
-            count,
-            axis,
-        }
-    }
-
-    /// The node's (slightly enlarged) box in `f64`.
-    #[inline(always)]
-    fn bounds(&self) -> Bounds3 {
-        let v = |c: [f32; 3]| DVec3::new(c[0].into(), c[1].into(), c[2].into());
-        Bounds3::new(v(self.lo), v(self.hi))
-    }
 }
 
 /// What `--stats` reports about a hierarchy.
@@ -113,8 +77,6 @@ pub struct BvhInfo {
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
     nodes: Vec<Node>,
-    /// The box of everything, exact (the root node's is rounded outward).
-    bounds: Option<Bounds3>,
     /// Item indices in leaf order.
     order: Vec<u32>,
     info: BvhInfo,
@@ -162,7 +124,6 @@ impl Bvh {
         let depth = build(&mut items, 0, 1, &mut bvh.nodes);
         bvh.nodes.shrink_to_fit();
         bvh.order = items.iter().map(|it| it.index).collect();
-        bvh.bounds = Some(boxes.iter().fold(EMPTY, |a, b| a.union(b)));
         bvh.info = BvhInfo {
             items: boxes.len(),
             nodes: bvh.nodes.len(),
@@ -179,7 +140,7 @@ impl Bvh {
 
     /// The box of everything, `None` when empty.
     pub fn bounds(&self) -> Option<Bounds3> {
-        self.bounds
+        self.nodes.first().map(|n| n.bounds)
     }
 
     /// Calls `visit(item, t_max)` for the items of every leaf whose box the ray crosses before
@@ -206,7 +167,7 @@ impl Bvh {
             let index = stack[top] as usize;
             let node = &self.nodes[index];
             *visits += 1;
-            let Some((near, far)) = node.bounds().slab(&slab_ray, range.start, range.end) else {
+            let Some((near, far)) = node.bounds.slab(&slab_ray, range.start, range.end) else {
                 continue;
             };
             if near > t_max + PRUNE_SLACK_REL * (near.abs() + (far - near)) {
@@ -304,7 +265,12 @@ fn build(items: &mut [Item], first: usize, depth: usize, out: &mut Vec<Node>) ->
         )
     });
     let n = items.len();
-    let leaf = Node::new(&bounds, first as u32, n as u32, 0);
+    let leaf = Node {
+        bounds,
+        offset: first as u32,
+        count: n as u32,
+        axis: 0,
+    };
     if n == 1 || depth >= MAX_DEPTH {
         out.push(leaf);
         return 1;
@@ -333,7 +299,12 @@ fn build(items: &mut [Item], first: usize, depth: usize, out: &mut Vec<Node>) ->
         n / 2
     };
     let at = out.len();
-    out.push(Node::new(&bounds, 0, 0, axis as u8));
+    out.push(Node {
+        bounds,
+        offset: 0,
+        count: 0,
+        axis: axis as u8,
+    });
     let (lo, hi) = items.split_at_mut(mid);
     let (dl, dr) = if n > PARALLEL_MIN_ITEMS {
         // Each half into its own vector, then appended with its inner nodes' child indices
@@ -478,26 +449,6 @@ mod tests {
         });
         assert_eq!(seen, vec![0, 1], "pruned after the hit: {seen:?}");
         assert!(visits > 0, "visits are counted");
-    }
-
-    #[test]
-    fn f32_node_boxes_hold_their_f64_boxes() {
-        // Coordinates that f32 cannot hold round to nearest, half of them inward; the node's
-        // box must still contain the item's, or the traversal would skip a touching ray.
-        for b in [
-            Bounds3::new(DVec3::splat(0.1), DVec3::splat(0.7)),
-            Bounds3::new(
-                DVec3::new(-1e-3, 1e7 + 0.3, -2.2),
-                DVec3::new(1e-3 + 1e-12, 1e7 + 0.6, -2.1),
-            ),
-            Bounds3::new(DVec3::splat(-1e300), DVec3::splat(1e300)),
-        ] {
-            let wide = Node::new(&b, 0, 1, 0).bounds();
-            assert!(
-                wide.min.cmple(b.min).all() && wide.max.cmpge(b.max).all(),
-                "{wide:?} holds {b:?}"
-            );
-        }
     }
 
     #[test]
