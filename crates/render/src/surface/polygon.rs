@@ -4,10 +4,10 @@
 //! origin moved to the box entry as on the shared implicit path, then the plane
 //! `n·(p − v₀) = 0` restricted to it, `c₀ + c₁s`, has its one root `s = −c₀/c₁` — the value
 //! `poly`'s linear closed form computes, correctly rounded — without the query's set-up, which
-//! cost ten times the division on the SPD meshes (`paper-notes/bvh.md`, "Leaf tests"). The
-//! hit is kept when it lies inside the polygon (crossing-number test in the plane's dominant
-//! projection, which handles convex and concave simple polygons); normals and error bounds
-//! come from the plane's implicit `F` as before.
+//! dominated the cost of a polygon test (`paper-notes/bvh.md` §3). The hit is kept when it
+//! lies inside the polygon (crossing-number test in the plane's dominant projection, which
+//! handles convex and concave simple polygons); normals and error bounds come from the
+//! plane's implicit `F` as before.
 //!
 //! Scene syntax:
 //! ```text
