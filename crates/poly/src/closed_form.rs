@@ -82,7 +82,15 @@ pub(crate) fn quadratic_smallest(
     // Sign of p left of both roots and right of both: that of c2; between them: −c2.
     let s_out: i8 = if c2 > 0.0 { 1 } else { -1 };
     for (k, r) in [r1, r2].into_iter().enumerate() {
-        let delta = half_tol(tol.near(r)).min(0.25 * (r2 - r1));
+        // The certifying interval (r − δ, r + δ) also stays on one side of each end of the
+        // range, so that it decides membership: with a wide tolerance (a shadow ray's "any
+        // root") δ would otherwise reach past an end near the root and leave the query
+        // undecided, to the general path (issue 12: most sphere shadow rays on the SPD
+        // sphereflakes). A δ of 0 (the root on an end) still defers, below.
+        let delta = half_tol(tol.near(r))
+            .min(0.25 * (r2 - r1))
+            .min(0.5 * (r - t_min).abs())
+            .min(0.5 * (t_max - r).abs());
         let (lo, hi) = (r - delta, r + delta);
         if !(lo < r && r < hi) {
             return None;
@@ -134,6 +142,31 @@ mod tests {
             .unwrap()
             .unwrap();
         assert!((r - 1e8).abs() <= 1e-6, "large root {r:e}");
+    }
+
+    /// A wide tolerance (a shadow ray's "any root": the whole range) with the smaller root
+    /// closer to the range's start than a quarter of the root gap: the certifying interval
+    /// used to reach below the start, so the closed form deferred to Bernstein isolation on
+    /// most sphere shadow rays of the SPD scenes (issue 12). It now decides.
+    #[test]
+    fn wide_tolerance_root_near_the_start_is_decided() {
+        // (x − 0.1)(x − 2): roots 0.1 and 2, the range (0, 3] and x_tol = 3.
+        let c = [0.2, -2.1, 1.0];
+        let r = quadratic_smallest(&c, 0.0, 3.0, Tolerance::absolute(3.0));
+        let r = r.expect("decided").expect("a root");
+        assert!((r - 0.1).abs() < 1e-12, "the smaller root: {r}");
+        // The larger root only, when the range starts between them near 2.
+        let r = quadratic_smallest(&c, 1.9, 3.0, Tolerance::absolute(1.1));
+        assert!(
+            (r.expect("decided").expect("a root") - 2.0).abs() < 1e-12,
+            "the larger root"
+        );
+        // No root when the range ends just before the smaller one.
+        assert_eq!(
+            quadratic_smallest(&c, -1.0, 0.09, Tolerance::absolute(1.09)),
+            Some(None),
+            "decided: none"
+        );
     }
 
     #[test]

@@ -149,14 +149,8 @@ fn build_surface(
             implicit(Plane::new(*origin, *normal), bounding, roots),
             world_from_object,
         ),
-        ShapeKind::Polygon { vertices } => place(
-            Polygon::new(vertices)?.with_root_methods(roots),
-            world_from_object,
-        ),
-        ShapeKind::Triangle { vertices } => place(
-            Polygon::new(vertices)?.with_root_methods(roots),
-            world_from_object,
-        ),
+        ShapeKind::Polygon { vertices } => place(Polygon::new(vertices)?, world_from_object),
+        ShapeKind::Triangle { vertices } => place(Polygon::new(vertices)?, world_from_object),
         ShapeKind::Box { min, max } => place(AaBox::new(*min, *max), world_from_object),
         ShapeKind::Superquadric {
             center,

@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 
 use glam::DVec3;
 
-use crate::geometry::{Bounds3, Ray};
+use crate::geometry::{Bounds3, Ray, SlabRay};
 
 /// Centroid bins per axis of the binned SAH: 16 finds splits within a few percent of the
 /// full sweep's cost at a fraction of its time (Wald 2007, §3: 8–32 bins).
@@ -157,7 +157,7 @@ impl Bvh {
         if self.nodes.is_empty() {
             return;
         }
-        let inv = DVec3::ONE / ray.dir;
+        let slab_ray = SlabRay::new(ray);
         let dir_neg = [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0];
         let mut t_max = range.end;
         let mut stack = [0u32; MAX_DEPTH];
@@ -167,13 +167,7 @@ impl Bvh {
             let index = stack[top] as usize;
             let node = &self.nodes[index];
             *visits += 1;
-            let Some(Range {
-                start: near,
-                end: far,
-            }) = node
-                .bounds
-                .intersect_ray_inv(ray.origin, inv, range.clone())
-            else {
+            let Some((near, far)) = node.bounds.slab(&slab_ray, range.start, range.end) else {
                 continue;
             };
             if near > t_max + PRUNE_SLACK_REL * (near.abs() + (far - near)) {

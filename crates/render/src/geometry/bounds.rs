@@ -82,13 +82,14 @@ impl Bounds3 {
     /// Conservative: the far distance of each slab is enlarged by `1 + 2γ(3)` (pbrt-v4
     /// §6.8.2), so rounding never rejects a ray that touches the box. A zero direction
     /// component gives infinite slab distances, handled by IEEE arithmetic; `0·∞` (origin on a
-    /// slab plane) yields NaN and the comparisons below then keep the other slabs' values.
+    /// slab plane with a zero direction component) yields NaN, and that slab does not clip:
+    /// the ray is inside the box where the other slabs say.
     pub fn intersect_ray(&self, ray: &Ray, range: Range<f64>) -> Option<Range<f64>> {
         self.intersect_ray_inv(ray.origin, DVec3::ONE / ray.dir, range)
     }
 
     /// [`Bounds3::intersect_ray`] for the ray from `origin` with reciprocal direction `inv`
-    /// (`1/dir` componentwise), which a hierarchy computes once per ray.
+    /// (`1/dir` componentwise).
     #[inline]
     pub fn intersect_ray_inv(
         &self,
@@ -96,15 +97,25 @@ impl Bounds3 {
         inv: DVec3,
         range: Range<f64>,
     ) -> Option<Range<f64>> {
-        let mut t0 = range.start;
-        let mut t1 = range.end;
+        self.slab(&SlabRay::from_inv(origin, inv), range.start, range.end)
+            .map(|(t0, t1)| t0..t1)
+    }
+
+    /// The slab test against a [`SlabRay`] (prepared once per ray by a hierarchy): the
+    /// interval `(t0, t1)` where the ray is inside the box, clipped to `start..end`, or `None`.
+    /// Same accuracy as [`Bounds3::intersect_ray`]. Stops at the first slab that empties the
+    /// interval.
+    #[inline(always)]
+    pub fn slab(&self, ray: &SlabRay, start: f64, end: f64) -> Option<(f64, f64)> {
+        let (mut t0, mut t1) = (start, end);
         for k in 0..3 {
-            let mut near = (self.min[k] - origin[k]) * inv[k];
-            let mut far = (self.max[k] - origin[k]) * inv[k];
+            let (o, inv) = (ray.origin[k], ray.inv[k]);
+            let mut near = (self.min[k] - o) * inv;
+            let mut far = (self.max[k] - o) * inv;
             if near > far {
                 std::mem::swap(&mut near, &mut far);
             }
-            far *= 1.0 + 2.0 * gamma(3);
+            far *= FAR_SCALE;
             // NaN-tolerant: a NaN slab (origin on the plane, direction zero) does not clip.
             if near > t0 {
                 t0 = near;
@@ -116,7 +127,42 @@ impl Bounds3 {
                 return None;
             }
         }
-        Some(t0..t1)
+        Some((t0, t1))
+    }
+}
+
+/// `1 + 2γ(3)`: the enlargement of each slab's far distance (pbrt-v4 §6.8.2), as a constant
+/// (`γ(3) = 3u/(1 − 3u)`, `u = ε/2`; checked against [`gamma`] in the tests).
+const FAR_SCALE: f64 =
+    1.0 + 2.0 * (3.0 * (f64::EPSILON / 2.0) / (1.0 - 3.0 * (f64::EPSILON / 2.0)));
+
+/// A ray prepared for many slab tests ([`Bounds3::slab`]): its origin and reciprocal
+/// direction, with an infinite component (a zero direction component) always `+∞`, so that a
+/// direction of `−0` answers as `+0` does (a NaN slab then never clips, whichever side of
+/// the slab the origin lies on).
+#[derive(Clone, Copy, Debug)]
+pub struct SlabRay {
+    origin: DVec3,
+    inv: DVec3,
+}
+
+impl SlabRay {
+    /// The ray from `origin` along `dir`.
+    pub fn new(ray: &Ray) -> Self {
+        Self::from_inv(ray.origin, DVec3::ONE / ray.dir)
+    }
+
+    /// The ray from `origin` with reciprocal direction `inv`.
+    pub fn from_inv(origin: DVec3, inv: DVec3) -> Self {
+        let unsigned_inf = |x: f64| if x.is_infinite() { f64::INFINITY } else { x };
+        SlabRay {
+            origin,
+            inv: DVec3::new(
+                unsigned_inf(inv.x),
+                unsigned_inf(inv.y),
+                unsigned_inf(inv.z),
+            ),
+        }
     }
 }
 
@@ -145,5 +191,28 @@ mod tests {
             .intersect_ray(&inside, 0.0..f64::INFINITY)
             .expect("starts inside");
         assert_eq!(r.start, 0.0, "clipped to the range start");
+    }
+
+    /// A ray lying in a face plane of the box (origin on the plane, zero direction component)
+    /// is inside the box whatever the sign of that zero: the slab test used to reject it for
+    /// `−0` (the NaN of `0·(−∞)` landed on the far side) and accept it for `+0`, so a box
+    /// hierarchy could answer differently from a mirrored scene.
+    #[test]
+    fn ray_in_a_face_plane_is_inside_for_either_signed_zero() {
+        let b = Bounds3::new(DVec3::ZERO, DVec3::ONE);
+        for zero in [0.0, -0.0] {
+            let ray = Ray::new(DVec3::new(-1.0, 0.5, 0.0), DVec3::new(1.0, 0.0, zero));
+            let r = b.intersect_ray(&ray, 0.0..f64::INFINITY);
+            let r = r.unwrap_or_else(|| panic!("dir.z = {zero:?}: in the face z = 0"));
+            assert!(
+                (r.start - 1.0).abs() < 1e-12 && (r.end - 2.0).abs() < 1e-12,
+                "{r:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn far_scale_is_one_plus_two_gamma_3() {
+        assert_eq!(FAR_SCALE, 1.0 + 2.0 * gamma(3), "the constant matches γ(3)");
     }
 }

@@ -5,7 +5,7 @@ mod bounds;
 mod ray;
 mod transform;
 
-pub use bounds::Bounds3;
+pub use bounds::{Bounds3, SlabRay};
 pub use ray::{Ray, offset_ray_origin};
 pub use transform::Transform;
 

@@ -1,8 +1,13 @@
 //! [`Polygon`]: a planar polygon (Stam's four-sided `POLYGON`, Kuchkuda's `TRIANGLE`).
 //!
-//! The supporting plane is intersected through the shared implicit path (degree 1); the hit
-//! is kept when it lies inside the polygon (crossing-number test in the plane's dominant
-//! projection, which handles convex and concave simple polygons).
+//! A planar test, not a root query: the ray is clipped to the polygon's (padded) box and its
+//! origin moved to the box entry as on the shared implicit path, then the plane
+//! `n·(p − v₀) = 0` restricted to it, `c₀ + c₁s`, has its one root `s = −c₀/c₁` — the value
+//! `poly`'s linear closed form computes, correctly rounded — without the query's set-up, which
+//! dominated the cost of a polygon test (`paper-notes/bvh.md` §3). The hit is kept when it
+//! lies inside the polygon (crossing-number test in the plane's dominant projection, which
+//! handles convex and concave simple polygons); normals and error bounds come from the
+//! plane's implicit `F` as before.
 //!
 //! Scene syntax:
 //! ```text
@@ -15,10 +20,9 @@ use std::ops::Range;
 
 use glam::{DVec2, DVec3};
 
-use super::implicit::Implicit;
+use super::implicit::{Implicit, clip, search_start};
 use super::{Hit, Plane, Surface, SurfaceGeometry, SurfaceKind};
 use crate::geometry::{Bounds3, Ray, gamma, polygon_normal};
-use crate::methods::RootMethods;
 use crate::workspace::Workspace;
 
 /// A planar polygon with at least three vertices.
@@ -69,10 +73,28 @@ impl Polygon {
         })
     }
 
-    /// Finds the plane's root with `roots` instead of the default methods.
-    pub fn with_root_methods(mut self, roots: RootMethods) -> Self {
-        self.plane = self.plane.with_root_methods(roots);
-        self
+    /// Where the ray meets the plane inside the polygon's box, over `t_range` (open at both
+    /// ends): `(t, point)`. The search starts at the box entry as [`Implicit`]'s does
+    /// ([`search_start`]), so a hit on the entry face is kept.
+    fn plane_hit(
+        &self,
+        ray: &Ray,
+        t_range: Range<f64>,
+        ws: &mut Workspace,
+    ) -> Option<(f64, DVec3)> {
+        let range_start = t_range.start;
+        let seg = clip(Some(&self.bounds), ray, t_range, ws, self.plane.kind())?;
+        let entry = seg.start;
+        let t0 = entry + search_start(range_start, entry, seg.end - entry);
+        let o = ray.at(t0);
+        let plane = self.plane.function();
+        let (c0, c1) = (
+            plane.normal().dot(o - plane.origin()),
+            plane.normal().dot(ray.dir),
+        );
+        // A ray parallel to the plane gives ±∞ or NaN, outside the range.
+        let s = -c0 / c1;
+        (s > 0.0 && s <= seg.end - t0).then(|| (t0 + s, o + ray.dir * s))
     }
 
     fn project(&self, v: DVec3) -> DVec2 {
@@ -112,7 +134,7 @@ impl Surface for Polygon {
     }
 
     fn intersect(&self, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> Option<Hit> {
-        let (t, p) = self.plane.nearest(ray, t_range, ws, false)?;
+        let (t, p) = self.plane_hit(ray, t_range, ws)?;
         self.contains(p).then_some(Hit {
             t,
             local: p,
