@@ -24,24 +24,13 @@
 
 use astro_float::{BigFloat, RoundingMode};
 
+use smallvec::SmallVec;
+
 use crate::bernstein::Bracket;
+use crate::dd_bernstein::{DdBernstein, DdOutcome};
+use crate::double_double::{DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, two_sum};
 use crate::eval_bound::certified_sign;
 use crate::stats::RootStats;
-use crate::univariate::ETA;
-
-/// Unit roundoff of the double-double operations used here, as a bound valid for all of
-/// them: `8u²` with `u = 2^-53`. Joldes, Muller & Popescu, "Tight and rigorous error bounds
-/// for basic building blocks of double-word arithmetic" (ACM TOMS 44, 2017) prove relative
-/// errors `3u²/(1 − 4u)` for the sum of two double-words (their Algorithm 6), `2u²` for a
-/// double-word times a double (Algorithm 9) and `5u²` for the product of two double-words
-/// (Algorithm 12); `8u²` covers each with room for the `(1 − 4u)` factors.
-const DD_UNIT: f64 = 8.0 * (0.5 * f64::EPSILON) * (0.5 * f64::EPSILON);
-
-/// Absolute error allowed per double-double operation for underflow: each uses at most four
-/// `f64` products or fused multiply–adds, whose error terms are exact only when no underflow
-/// occurs; an underflowing rounding errs by at most `2^-1075` absolutely. (Sums of `f64`
-/// numbers never err by underflow.) So `4·2^-1075 < 2^-1072`, rounded up to a power of two.
-const DD_UNDERFLOW: f64 = 4.0 * ETA;
 
 /// Precision of the first arbitrary-precision tier, in bits (the next after double-double's
 /// 106); each further tier doubles it.
@@ -85,104 +74,6 @@ impl Tier {
 }
 
 // ---------------------------------------------------------------------------------------
-// Double-double arithmetic (Joldes–Muller–Popescu 2017).
-
-/// A double-double number `hi + lo`, `|lo| ≤ ulp(hi)/2`.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct Dd {
-    hi: f64,
-    lo: f64,
-}
-
-/// Knuth's TwoSum: `s + e = a + b` exactly (no overflow).
-#[inline]
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bb = s - a;
-    (s, (a - (s - bb)) + (b - bb))
-}
-
-/// Dekker's Fast2Sum (`|a| ≥ |b|` or `a = 0`): `s + e = a + b` exactly.
-#[inline]
-fn fast_two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    (s, b - (s - a))
-}
-
-/// TwoProduct by fused multiply–add: `p + e = a·b` exactly without underflow.
-#[inline]
-fn two_prod(a: f64, b: f64) -> (f64, f64) {
-    let p = a * b;
-    (p, a.mul_add(b, -p))
-}
-
-impl Dd {
-    #[inline]
-    fn from_f64(x: f64) -> Dd {
-        Dd { hi: x, lo: 0.0 }
-    }
-
-    /// Algorithm 6 of Joldes et al. (accurate double-word sum).
-    #[inline]
-    fn add(self, y: Dd) -> Dd {
-        let (sh, sl) = two_sum(self.hi, y.hi);
-        let (th, tl) = two_sum(self.lo, y.lo);
-        let c = sl + th;
-        let (vh, vl) = fast_two_sum(sh, c);
-        let w = tl + vl;
-        let (hi, lo) = fast_two_sum(vh, w);
-        Dd { hi, lo }
-    }
-
-    /// Algorithm 4 of Joldes et al. (double-word plus double).
-    #[inline]
-    fn add_f(self, y: f64) -> Dd {
-        let (sh, sl) = two_sum(self.hi, y);
-        let v = self.lo + sl;
-        let (hi, lo) = fast_two_sum(sh, v);
-        Dd { hi, lo }
-    }
-
-    /// Algorithm 9 of Joldes et al. (double-word times double).
-    #[inline]
-    fn mul_f(self, y: f64) -> Dd {
-        let (ch, cl1) = two_prod(self.hi, y);
-        let cl2 = self.lo * y;
-        let (th, tl1) = fast_two_sum(ch, cl2);
-        let tl2 = tl1 + cl1;
-        let (hi, lo) = fast_two_sum(th, tl2);
-        Dd { hi, lo }
-    }
-
-    /// Algorithm 12 of Joldes et al. (double-word times double-word).
-    #[inline]
-    fn mul(self, y: Dd) -> Dd {
-        let (ch, cl1) = two_prod(self.hi, y.hi);
-        let tl0 = self.lo * y.lo;
-        let tl1 = self.hi.mul_add(y.lo, tl0);
-        let cl2 = self.lo.mul_add(y.hi, tl1);
-        let cl3 = cl1 + cl2;
-        let (hi, lo) = fast_two_sum(ch, cl3);
-        Dd { hi, lo }
-    }
-
-    /// The sign of the exact value when `|value| > bound` is certain, else 0. `|lo| ≤
-    /// ulp(hi)/2 ≤ 2^-53·|hi|`, so `|value| ≥ |hi|·(1 − 2^-53)`.
-    #[inline]
-    fn sign_beyond(self, bound: f64) -> i8 {
-        if !(self.hi.is_finite() && self.lo.is_finite()) {
-            return 0;
-        }
-        let lower = self.hi.abs() * (1.0 - f64::EPSILON);
-        if lower > bound {
-            if self.hi > 0.0 { 1 } else { -1 }
-        } else {
-            0
-        }
-    }
-}
-
-// ---------------------------------------------------------------------------------------
 // The tier-generic operations.
 
 /// The operations a tier provides for the Taylor shift, the basis change and Horner's rule.
@@ -203,16 +94,6 @@ trait Arith {
     fn underflow(&self) -> f64;
 }
 
-/// `γ(k) = k·u/(1 − k·u)` for unit roundoff `u`, rounded up; infinite when `k·u ≥ 1/2`.
-fn gamma_u(k: usize, u: f64) -> f64 {
-    let ku = k as f64 * u;
-    if ku >= 0.5 {
-        f64::INFINITY
-    } else {
-        ku / (1.0 - ku) * (1.0 + 4.0 * f64::EPSILON)
-    }
-}
-
 struct DdArith;
 
 impl Arith for DdArith {
@@ -221,7 +102,7 @@ impl Arith for DdArith {
         Dd::from_f64(x)
     }
     fn exact_pair(&self, hi: f64, lo: f64) -> Dd {
-        Dd { hi, lo }
+        Dd::from_pair(hi, lo)
     }
     fn add(&self, x: &Dd, y: &Dd) -> Dd {
         x.add(*y)
@@ -324,7 +205,7 @@ impl Arith for BigArith {
 
 /// `Σ|cᵢ|·rⁱ` rounded up (Horner on non-negative numbers is increasing; `2n + 2` roundings,
 /// inflated for them), and `Σ rⁱ` likewise.
-fn abs_weights(c: &[f64], r: f64) -> (f64, f64) {
+pub(crate) fn abs_weights(c: &[f64], r: f64) -> (f64, f64) {
     let r = r * (1.0 + 2.0 * f64::EPSILON);
     let (mut s, mut z) = (0.0f64, 0.0f64);
     for &ci in c.iter().rev() {
@@ -518,9 +399,17 @@ type Node = (f64, f64, i8, i8, Tier, u32);
 /// classified afresh at its own tier, starting at double-double. [`next`](Self::next) yields
 /// the outcomes in increasing order, so a smallest-root query stops at the first root (an
 /// undecided piece may hold none: the caller decides it exactly and asks for more).
+///
+/// Each segment (the piece, or its two sides of 0) is first given to the double-double de
+/// Casteljau run ([`DdBernstein`], one Taylor shift for the whole segment); only what that
+/// run hands back is bisected here with a fresh shift per node.
 pub(crate) struct PieceIsolator<'c> {
     c: &'c [f64],
-    stack: Vec<Node>,
+    /// Segments not started yet, the next on top: `(x, y]` with the signs at the ends.
+    segments: SmallVec<[(f64, f64, i8, i8); 2]>,
+    /// The de Casteljau run on the current segment, with that segment's end and its sign.
+    fast: Option<(DdBernstein<'c>, f64, i8)>,
+    stack: SmallVec<[Node; 16]>,
     nodes: u32,
     used_big: bool,
     sc: Scratch,
@@ -536,19 +425,21 @@ impl<'c> PieceIsolator<'c> {
         stats: &mut RootStats,
     ) -> Self {
         stats.adaptive_pieces += 1;
-        let mut stack = Vec::new();
+        let mut segments = SmallVec::new();
         // A piece straddling 0 is split there first (p(0) = c₀ exactly), so that every node
         // has `max(|x|, |y|)` no larger than needed in its bound `M`.
         if lo < 0.0 && 0.0 < hi && c[0] != 0.0 {
             let s0 = if c[0] > 0.0 { 1 } else { -1 };
-            stack.push((0.0, hi, s0, s_hi, Tier::Dd, 0));
-            stack.push((lo, 0.0, s_lo, s0, Tier::Dd, 0));
+            segments.push((0.0, hi, s0, s_hi));
+            segments.push((lo, 0.0, s_lo, s0));
         } else {
-            stack.push((lo, hi, s_lo, s_hi, Tier::Dd, 0));
+            segments.push((lo, hi, s_lo, s_hi));
         }
         PieceIsolator {
             c,
-            stack,
+            segments,
+            fast: None,
+            stack: SmallVec::new(),
             nodes: 0,
             used_big: false,
             sc: Scratch::default(),
@@ -558,6 +449,36 @@ impl<'c> PieceIsolator<'c> {
     /// The next outcome, left to right; `None` when the piece is done. Counts
     /// [`RootStats::multiprecision_pieces`] once when a tier above double-double was used.
     pub(crate) fn next(&mut self, stats: &mut RootStats) -> Option<Outcome> {
+        loop {
+            if let Some((run, y, s_y)) = &mut self.fast {
+                match run.next(stats) {
+                    Some(DdOutcome::Bracket(b)) => return Some(Outcome::Bracket(b)),
+                    Some(DdOutcome::Handoff { t_a, s_a }) => {
+                        if t_a < *y {
+                            self.stack.push((t_a, *y, s_a, *s_y, Tier::Dd, 0));
+                        }
+                        self.fast = None;
+                    }
+                    None => self.fast = None,
+                }
+            }
+            if let Some(outcome) = self.next_node(stats) {
+                return Some(outcome);
+            }
+            if !self.stack.is_empty() {
+                continue;
+            }
+            let (x, y, s_x, s_y) = self.segments.pop()?;
+            match DdBernstein::new(self.c, (x, y), (s_x, s_y)) {
+                Some(run) => self.fast = Some((run, y, s_y)),
+                None => self.stack.push((x, y, s_x, s_y, Tier::Dd, 0)),
+            }
+        }
+    }
+
+    /// The per-node bisection of the stack: the next outcome, or `None` when the stack is
+    /// empty.
+    fn next_node(&mut self, stats: &mut RootStats) -> Option<Outcome> {
         let c = self.c;
         while let Some((x, y, s_x, s_y, tier, depth)) = self.stack.pop() {
             if self.nodes >= MAX_NODES || depth >= MAX_DEPTH {
