@@ -49,6 +49,11 @@ const MAX_NODES: u32 = 4096;
 /// adjacent numbers; past that the node is left to exact isolation.
 const MAX_DEPTH: u32 = 96;
 
+/// How many times the rest of a segment that a double-double de Casteljau run could not
+/// finish is halved into fresh runs (each halving can shrink the bound `M` by up to `2ⁿ`)
+/// before the per-node tiers take over.
+const SEGMENT_HALVINGS: u32 = 6;
+
 /// Non-dyadic fractions tried when a midpoint's sign is undecided at every tier (`√2 − 1`
 /// and its complement): a root sitting exactly on the midpoint is then avoided.
 const SPLIT_FRACTIONS: [f64; 2] = [0.414_213_562_373_095_1, 0.585_786_437_626_904_9];
@@ -405,10 +410,12 @@ type Node = (f64, f64, i8, i8, Tier, u32);
 /// run hands back is bisected here with a fresh shift per node.
 pub(crate) struct PieceIsolator<'c> {
     c: &'c [f64],
-    /// Segments not started yet, the next on top: `(x, y]` with the signs at the ends.
-    segments: SmallVec<[(f64, f64, i8, i8); 2]>,
-    /// The de Casteljau run on the current segment, with that segment's end and its sign.
-    fast: Option<(DdBernstein<'c>, f64, i8)>,
+    /// Segments not started yet, the next on top: `(x, y]` with the signs at the ends and
+    /// the number of halvings that made it.
+    segments: SmallVec<[(f64, f64, i8, i8, u32); 4]>,
+    /// The de Casteljau run on the current segment, with that segment's end, its sign and
+    /// halvings.
+    fast: Option<(DdBernstein<'c>, f64, i8, u32)>,
     stack: SmallVec<[Node; 16]>,
     nodes: u32,
     used_big: bool,
@@ -430,10 +437,10 @@ impl<'c> PieceIsolator<'c> {
         // has `max(|x|, |y|)` no larger than needed in its bound `M`.
         if lo < 0.0 && 0.0 < hi && c[0] != 0.0 {
             let s0 = if c[0] > 0.0 { 1 } else { -1 };
-            segments.push((0.0, hi, s0, s_hi));
-            segments.push((lo, 0.0, s_lo, s0));
+            segments.push((0.0, hi, s0, s_hi, 0));
+            segments.push((lo, 0.0, s_lo, s0, 0));
         } else {
-            segments.push((lo, hi, s_lo, s_hi));
+            segments.push((lo, hi, s_lo, s_hi, 0));
         }
         PieceIsolator {
             c,
@@ -450,14 +457,26 @@ impl<'c> PieceIsolator<'c> {
     /// [`RootStats::multiprecision_pieces`] once when a tier above double-double was used.
     pub(crate) fn next(&mut self, stats: &mut RootStats) -> Option<Outcome> {
         loop {
-            if let Some((run, y, s_y)) = &mut self.fast {
+            if let Some((run, y, s_y, halvings)) = &mut self.fast {
                 match run.next(stats) {
                     Some(DdOutcome::Bracket(b)) => return Some(Outcome::Bracket(b)),
                     Some(DdOutcome::Handoff { t_a, s_a }) => {
-                        if t_a < *y {
-                            self.stack.push((t_a, *y, s_a, *s_y, Tier::Dd, 0));
-                        }
+                        let (y, s_y, halvings) = (*y, *s_y, *halvings);
                         self.fast = None;
+                        // A fresh run on each half of the rest: its bound M shrinks with the
+                        // segment's distance from 0 (as the f64 path's restarts do), up to
+                        // SEGMENT_HALVINGS times; then the per-node tiers take the rest.
+                        let split = (halvings < SEGMENT_HALVINGS && t_a < y)
+                            .then(|| split_point(self.c, t_a, y, Tier::Dd))
+                            .flatten();
+                        match split {
+                            Some((m, s_m, _)) => {
+                                self.segments.push((m, y, s_m, s_y, halvings + 1));
+                                self.segments.push((t_a, m, s_a, s_m, halvings + 1));
+                            }
+                            None if t_a < y => self.stack.push((t_a, y, s_a, s_y, Tier::Dd, 0)),
+                            None => {}
+                        }
                     }
                     None => self.fast = None,
                 }
@@ -468,9 +487,9 @@ impl<'c> PieceIsolator<'c> {
             if !self.stack.is_empty() {
                 continue;
             }
-            let (x, y, s_x, s_y) = self.segments.pop()?;
+            let (x, y, s_x, s_y, halvings) = self.segments.pop()?;
             match DdBernstein::new(self.c, (x, y), (s_x, s_y)) {
-                Some(run) => self.fast = Some((run, y, s_y)),
+                Some(run) => self.fast = Some((run, y, s_y, halvings)),
                 None => self.stack.push((x, y, s_x, s_y, Tier::Dd, 0)),
             }
         }
