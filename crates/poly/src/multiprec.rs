@@ -30,7 +30,10 @@ use crate::bernstein::Bracket;
 use crate::dd_bernstein::{DdBernstein, DdOutcome};
 use crate::double_double::{DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, two_sum};
 use crate::eval_bound::certified_sign;
+use crate::scalar::rat_from_f64;
 use crate::stats::RootStats;
+use crate::univariate::Poly;
+use num_traits::Zero;
 
 /// Precision of the first arbitrary-precision tier, in bits (the next after double-double's
 /// 106); each further tier doubles it.
@@ -580,7 +583,14 @@ pub(crate) fn refine_wide(c: &[f64], b: Bracket, x_tol: f64, stats: &mut RootSta
             let m = lo + 0.5 * (hi - lo);
             return Some(if m > lo && m < hi { m } else { lo });
         }
-        let (m, s, t) = split_point(c, lo, hi, tier)?;
+        let Some((m, s, t)) = split_point(c, lo, hi, tier) else {
+            // No point is signed even at MAX_BITS: the midpoint may be the root itself (a
+            // stored polynomial with an exact f64 root, as Vieta's products of f64 roots
+            // have). One exact evaluation there (n rational operations, no Sturm sequence)
+            // tells; the bracket holds one distinct root, so a zero is that root.
+            let mid = lo + 0.5 * (hi - lo);
+            return (mid > lo && mid < hi && is_exact_root(c, mid)).then_some(mid);
+        };
         stats.refine_evals += 1;
         tier = t;
         if s == s_lo {
@@ -589,6 +599,14 @@ pub(crate) fn refine_wide(c: &[f64], b: Bracket, x_tol: f64, stats: &mut RootSta
             hi = m;
         }
     }
+}
+
+/// Whether `p(x) = 0` exactly (Horner's rule in rationals on the stored coefficients).
+fn is_exact_root(c: &[f64], x: f64) -> bool {
+    let (Some(xr), Some(poly)) = (rat_from_f64(x), Poly::new(c.to_vec()).to_rat()) else {
+        return false;
+    };
+    poly.eval(&xr).is_zero()
 }
 
 #[cfg(test)]
@@ -833,6 +851,24 @@ mod tests {
             let p = kac(d, seed);
             check_all(&p, -3.0, 3.0, 1e-12, &mut stats);
         }
+    }
+
+    /// Orellana–De Michele's case 1, `(x − 1)(x − 1e3)(x − 1e6)(x − 1e9)` by Vieta's
+    /// formulas: the stored coefficients are exact, so every root is an exact `f64` where no
+    /// precision can sign `p`. With `x_tol = 0` the refinement used to finish each root with
+    /// the exact Sturm sequence; one exact evaluation at the root now suffices.
+    #[test]
+    fn exact_f64_roots_refine_to_full_precision_without_a_sturm_sequence() {
+        let p = exact_product(&[1.0, 1e3, 1e6, 1e9]).expect("exact coefficients");
+        let mut stats = RootStats::default();
+        check_all(&p, -2.0, 2e9, 0.0, &mut stats);
+        let roots = p.real_roots(-2.0, 2e9, 0.0).unwrap();
+        assert_eq!(roots, vec![1.0, 1e3, 1e6, 1e9], "each root exactly");
+        assert_eq!(
+            (stats.exact_fallbacks, stats.refine_fallbacks),
+            (0, 0),
+            "no exact sequence: {stats:?}"
+        );
     }
 
     proptest! {
