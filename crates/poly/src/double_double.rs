@@ -51,41 +51,11 @@ pub(crate) fn fast_two_sum(a: f64, b: f64) -> (f64, f64) {
     (s, b - (s - a))
 }
 
-/// Veltkamp's splitting constant `2^27 + 1`.
-const SPLITTER: f64 = 134_217_729.0;
-
-/// Operands of Dekker's product inside `[2^-450, 2^450]` in magnitude: their ulps multiply
-/// to at least `2^-1004`, so no partial product underflows (Dekker's product is error-free
-/// when `ulp(a)·ulp(b) ≥ 2^-1022`; Boldo, "Pitfalls of a full floating-point proof", IJCAR
-/// 2006), and neither the split (`2^27·|x| < 2^996`) nor a product overflows.
-const DEKKER_MIN: f64 = 3.439_552_567_074_349_4e-136; // 2^-450
-const DEKKER_MAX: f64 = 2.907_354_897_182_427_6e135; // 2^450
-
-/// Veltkamp's split: `hi + lo = a` exactly, each with at most 26 significant bits.
-#[inline]
-fn split(a: f64) -> (f64, f64) {
-    let t = SPLITTER * a;
-    let hi = t - (t - a);
-    (hi, a - hi)
-}
-
-/// TwoProduct: `p + e = a·b` exactly (no overflow, no underflow). Dekker's algorithm on the
-/// split operands where that is error-free (see [`DEKKER_MIN`]), which needs no fused
-/// multiply–add: without a hardware-FMA target feature `f64::mul_add` is a library call
-/// costing far more (it was 12–20 % of the adaptive path's instructions,
-/// `paper-notes/isolation.md`). Outside that range, and for zeros, the fused multiply–add.
+/// TwoProduct by fused multiply–add: `p + e = a·b` exactly without underflow.
 #[inline]
 pub(crate) fn two_prod(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
-    let (aa, ab) = (a.abs(), b.abs());
-    if (DEKKER_MIN..=DEKKER_MAX).contains(&aa) && (DEKKER_MIN..=DEKKER_MAX).contains(&ab) {
-        let (ah, al) = split(a);
-        let (bh, bl) = split(b);
-        let e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
-        (p, e)
-    } else {
-        (p, a.mul_add(b, -p))
-    }
+    (p, a.mul_add(b, -p))
 }
 
 impl Dd {
@@ -186,41 +156,6 @@ impl Dd {
             if self.hi > 0.0 { 1 } else { -1 }
         } else {
             0
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::scalar::rat_from_f64;
-
-    /// Dekker's product is exact in its range and the fused multiply–add outside it.
-    #[test]
-    fn two_prod_is_error_free() {
-        assert_eq!(DEKKER_MIN, 2f64.powi(-450), "the constant is 2^-450");
-        assert_eq!(DEKKER_MAX, 2f64.powi(450), "the constant is 2^450");
-        let xs = [
-            0.1,
-            -3.0 + 2f64.powi(-40),
-            1.0 / 3.0,
-            7.0e30,
-            -1.3e-14,
-            2f64.powi(449) * 1.7,
-            1e-200,
-            1e200,
-            0.0,
-        ];
-        for &a in &xs {
-            for &b in &xs {
-                let (p, e) = two_prod(a, b);
-                if !p.is_finite() || (a != 0.0 && b != 0.0 && p.abs() < 2f64.powi(-900)) {
-                    continue; // overflow, or near underflow: outside the contract
-                }
-                let exact = rat_from_f64(a).unwrap() * rat_from_f64(b).unwrap();
-                let got = rat_from_f64(p).unwrap() + rat_from_f64(e).unwrap();
-                assert_eq!(got, exact, "{a:e} × {b:e}");
-            }
         }
     }
 }

@@ -7,7 +7,6 @@
 //! pays for the second when the first cannot decide, which near a simple root shrinks the
 //! band of undecidable points by a factor of about 2^53.
 
-use crate::double_double::two_prod;
 use crate::univariate::{Bounded, ETA, Poly, UNIT_ROUNDOFF, gamma};
 
 /// An upper bound on `γ(k)/(1 − γ(k)) = k·u/(1 − 2k·u)` (`u` = [`UNIT_ROUNDOFF`]) without a division:
@@ -122,8 +121,9 @@ pub(crate) fn comp_horner_bounded(c: &[f64], x: f64) -> (f64, f64) {
     let mut mag = top.abs();
     let mut z = 1.0;
     for &ci in c.iter().rev().skip(1) {
-        // TwoProduct (error-free, `double_double::two_prod`) and TwoSum (Knuth).
-        let (p, pi) = two_prod(s, x);
+        // TwoProduct (exact with fma) and TwoSum (Knuth).
+        let p = s * x;
+        let pi = s.mul_add(x, -p);
         let t = p + ci;
         let bb = t - p;
         let sigma = (p - (t - bb)) + (ci - bb);
