@@ -24,7 +24,7 @@ use smallvec::SmallVec;
 
 use crate::bernstein::Bracket;
 use crate::double_double::{DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, two_sum};
-use crate::multiprec::{Tier, abs_weights, point_sign};
+use crate::eval_bound::abs_weights;
 use crate::stats::RootStats;
 
 /// Highest degree handled: `C(n, j)` must be exact in `f64` (`C(56, 28) < 2^53`).
@@ -80,15 +80,28 @@ pub(crate) struct DdBernstein<'c> {
     nodes: u32,
     /// The end of the last bracket (or `x`) and the certified sign there.
     floor: (f64, i8),
+    /// A certified sign of `p` at a point, 0 when undecided (`multiprec`'s tiers).
+    sign_at: fn(&[f64], f64) -> i8,
 }
 
 impl<'c> DdBernstein<'c> {
     /// Sets up the run on `(x, y]` (`x < y`, finite, both `≥ 0` or both `≤ 0`) with the
-    /// certified non-zero signs `s_x`, `s_y`. `None` for a degree outside `2..=`[`MAX_DEGREE`]
+    /// certified non-zero signs `s_x`, `s_y`; `sign_at` certifies the signs of bracket ends
+    /// (0 when it cannot). `None` for a degree outside `2..=`[`MAX_DEGREE`]
     /// or when the magnitude bound overflows.
-    pub(crate) fn new(c: &'c [f64], (x, y): (f64, f64), (s_x, s_y): (i8, i8)) -> Option<Self> {
+    pub(crate) fn new(
+        c: &'c [f64],
+        (x, y): (f64, f64),
+        (s_x, s_y): (i8, i8),
+        sign_at: fn(&[f64], f64) -> i8,
+    ) -> Option<Self> {
         let n = c.len() - 1;
-        if !(2..=MAX_DEGREE).contains(&n) || !(x < y) || (x < 0.0 && y > 0.0) {
+        if !(2..=MAX_DEGREE).contains(&n)
+            || x >= y
+            || x.is_nan()
+            || y.is_nan()
+            || (x < 0.0 && y > 0.0)
+        {
             return None;
         }
         // Orientation: shift to the end nearer 0, so M uses max(|x|, |y|).
@@ -175,6 +188,7 @@ impl<'c> DdBernstein<'c> {
             ),
             nodes: 0,
             floor: (x, s_x),
+            sign_at,
         })
     }
 
@@ -209,15 +223,7 @@ impl<'c> DdBernstein<'c> {
                     // De Casteljau at u = 1/2: the right half in place, the left half above
                     // it (popped first).
                     let at = node.at;
-                    self.arena.resize(at + 2 * (n + 1), Dd::default());
-                    let (right, left) = self.arena[at..].split_at_mut(n + 1);
-                    left[0] = right[0];
-                    for r in 1..=n {
-                        for i in 0..=n - r {
-                            right[i] = right[i].average(right[i + 1]);
-                        }
-                        left[r] = right[0];
-                    }
+                    halve(&mut self.arena, at, n);
                     let mid = 0.5 * (node.u0 + node.u1);
                     let depth = node.depth + 1;
                     self.stack.push(Node {
@@ -334,16 +340,34 @@ impl<'c> DdBernstein<'c> {
         } else {
             self.beyond(node.u1, -1.0)
         };
-        if !(lo < hi) {
+        if lo.is_nan() || hi.is_nan() || lo >= hi {
             return None;
         }
-        if node.u0 > 0.0 && point_sign(c, lo, Tier::Dd).0 != s_left {
+        if node.u0 > 0.0 && (self.sign_at)(c, lo) != s_left {
             return None;
         }
-        if node.u1 < 1.0 && point_sign(c, hi, Tier::Dd).0 != -s_left {
+        if node.u1 < 1.0 && (self.sign_at)(c, hi) != -s_left {
             return None;
         }
         Some(Bracket::new(lo, hi, s_left))
+    }
+}
+
+/// De Casteljau at `u = 1/2` on the node whose `n + 1` coefficients start at `at` (the top
+/// of the arena): the right half stays in place, the left half is written above it.
+#[allow(
+    clippy::needless_range_loop,
+    reason = "two halves indexed together, as in bernstein.rs"
+)]
+fn halve(arena: &mut SmallVec<[Dd; 64]>, at: usize, n: usize) {
+    arena.resize(at + 2 * (n + 1), Dd::default());
+    let (right, left) = arena[at..].split_at_mut(n + 1);
+    left[0] = right[0];
+    for r in 1..=n {
+        for i in 0..=n - r {
+            right[i] = right[i].average(right[i + 1]);
+        }
+        left[r] = right[0];
     }
 }
 
@@ -364,6 +388,22 @@ mod tests {
     use crate::univariate::Poly;
     use num_traits::Signed;
     use proptest::prelude::*;
+
+    /// The exact sign of `p(x)` for the stored coefficients (the test oracle; also the
+    /// run's sign function here).
+    fn exact_sign(c: &[f64], x: f64) -> i8 {
+        let v = Poly::new(c.to_vec())
+            .to_rat()
+            .unwrap()
+            .eval(&rat_from_f64(x).unwrap());
+        if v.is_positive() {
+            1
+        } else if v.is_negative() {
+            -1
+        } else {
+            0
+        }
+    }
 
     /// Exact Bernstein coefficients of `p` on `[x, y]`.
     fn exact_bernstein(p: &Poly<f64>, xr: &Rat, yr: &Rat) -> Vec<Rat> {
@@ -396,7 +436,7 @@ mod tests {
         let p = Poly::new(vec![-1.3e3, 2.7, 0.41, -7.9, 1.0, 0.031, -2.2e-3]);
         let mut stats = RootStats::default();
         for (x, y) in [(0.37, 11.3), (-9.1, -0.2), (0.0, 3.3), (-2.5, 0.0)] {
-            let mut run = DdBernstein::new(p.coeffs(), (x, y), (1, 1)).unwrap();
+            let mut run = DdBernstein::new(p.coeffs(), (x, y), (1, 1), exact_sign).unwrap();
             let n = p.degree();
             let check = |run: &DdBernstein<'_>, node: &Node| {
                 let (u0, u1) = (node.u0, node.u1);
@@ -422,15 +462,7 @@ mod tests {
                 let node = run.stack.pop().unwrap();
                 let at = node.at;
                 run.arena.truncate(at + n + 1);
-                run.arena.resize(at + 2 * (n + 1), Dd::default());
-                let (right, left) = run.arena[at..].split_at_mut(n + 1);
-                left[0] = right[0];
-                for r in 1..=n {
-                    for i in 0..=n - r {
-                        right[i] = right[i].average(right[i + 1]);
-                    }
-                    left[r] = right[0];
-                }
+                halve(&mut run.arena, at, n);
                 let mid = 0.5 * (node.u0 + node.u1);
                 let depth = node.depth + 1;
                 let (l, r) = (
@@ -509,9 +541,9 @@ mod tests {
             let p = Poly::<f64>::from_roots(&rs);
             let (x, y) = if left { (-5.0, 0.0) } else { (0.0, 5.0) };
             let c = p.coeffs();
-            let (sx, sy) = (point_sign(c, x, Tier::Dd).0, point_sign(c, y, Tier::Dd).0);
+            let (sx, sy) = (exact_sign(c, x), exact_sign(c, y));
             prop_assume!(sx != 0 && sy != 0 && p.degree() <= MAX_DEGREE);
-            let mut run = DdBernstein::new(c, (x, y), (sx, sy)).unwrap();
+            let mut run = DdBernstein::new(c, (x, y), (sx, sy), exact_sign).unwrap();
             let mut stats = RootStats::default();
             let mut found = 0;
             let mut end = y;
@@ -519,17 +551,17 @@ mod tests {
                 match o {
                     DdOutcome::Bracket(b) => {
                         prop_assert_eq!(exact_count(&p, b.lo, b.hi), 1, "{:?}", b);
-                        prop_assert_eq!(point_sign(c, b.lo, Tier::Dd).0, b.s_lo);
-                        prop_assert_eq!(point_sign(c, b.hi, Tier::Dd).0, -b.s_lo);
+                        prop_assert_eq!(exact_sign(c, b.lo), b.s_lo);
+                        prop_assert_eq!(exact_sign(c, b.hi), -b.s_lo);
                         found += 1;
                     }
                     DdOutcome::Handoff { t_a, s_a } => {
-                        prop_assert_eq!(point_sign(c, t_a, Tier::Dd).0, s_a);
+                        prop_assert_eq!(exact_sign(c, t_a), s_a);
                         end = t_a;
                     }
                 }
             }
-            let on_end = usize::from(end < y && point_sign(c, end, Tier::Big(1024)).0 == 0);
+            let on_end = usize::from(end < y && exact_sign(c, end) == 0);
             prop_assert_eq!(exact_count(&p, x, end) + on_end, found, "{:?} on ({}, {}]", rs, x, end);
         }
     }

@@ -29,7 +29,7 @@ use smallvec::SmallVec;
 use crate::bernstein::Bracket;
 use crate::dd_bernstein::{DdBernstein, DdOutcome};
 use crate::double_double::{DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, two_sum};
-use crate::eval_bound::certified_sign;
+use crate::eval_bound::{abs_weights, certified_sign};
 use crate::scalar::rat_from_f64;
 use crate::stats::RootStats;
 use crate::univariate::Poly;
@@ -211,19 +211,6 @@ impl Arith for BigArith {
 // ---------------------------------------------------------------------------------------
 // Certified point signs.
 
-/// `Σ|cᵢ|·rⁱ` rounded up (Horner on non-negative numbers is increasing; `2n + 2` roundings,
-/// inflated for them), and `Σ rⁱ` likewise.
-pub(crate) fn abs_weights(c: &[f64], r: f64) -> (f64, f64) {
-    let r = r * (1.0 + 2.0 * f64::EPSILON);
-    let (mut s, mut z) = (0.0f64, 0.0f64);
-    for &ci in c.iter().rev() {
-        s = s * r + ci.abs();
-        z = z * r + 1.0;
-    }
-    let inflate = 1.0 + 2.0 * crate::eval_bound::gamma_ratio_upper(2 * c.len() + 2);
-    (s * inflate, z * inflate)
-}
-
 /// The sign of `p(x)` at one tier by Horner's rule (`2n` roundings), certified, or 0.
 fn horner_sign<A: Arith>(ar: &A, c: &[f64], x: f64) -> i8 {
     let n = c.len() - 1;
@@ -238,6 +225,11 @@ fn horner_sign<A: Arith>(ar: &A, c: &[f64], x: f64) -> i8 {
     // Underflow errors are amplified by at most |x| per later step: Σ|x|ⁱ per operation.
     let tiny = 2.0 * ar.underflow() * z;
     ar.sign_beyond(&v, 2 * n, s, tiny)
+}
+
+/// [`point_sign`] from double-double up, as the sign function of [`DdBernstein`].
+fn dd_sign(c: &[f64], x: f64) -> i8 {
+    point_sign(c, x, Tier::Dd).0
 }
 
 /// The certified sign of `p(x)`: the `f64` tiers of [`certified_sign`], then each wide tier
@@ -402,6 +394,10 @@ pub(crate) enum Outcome {
 /// starts at, its depth.
 type Node = (f64, f64, i8, i8, Tier, u32);
 
+/// A segment of a piece: `(x, y]`, the certified signs at its ends, and how many halvings
+/// of a de Casteljau run's rest made it.
+type Segment = (f64, f64, i8, i8, u32);
+
 /// Isolation of the roots of `p` (coefficients `c`, degree ≥ 1) in `(lo, hi]`, where `p(lo)`
 /// and `p(hi)` have certified non-zero signs, by bisection at `f64` points with each node
 /// classified afresh at its own tier, starting at double-double. [`next`](Self::next) yields
@@ -415,7 +411,7 @@ pub(crate) struct PieceIsolator<'c> {
     c: &'c [f64],
     /// Segments not started yet, the next on top: `(x, y]` with the signs at the ends and
     /// the number of halvings that made it.
-    segments: SmallVec<[(f64, f64, i8, i8, u32); 4]>,
+    segments: SmallVec<[Segment; 4]>,
     /// The de Casteljau run on the current segment, with that segment's end, its sign and
     /// halvings.
     fast: Option<(DdBernstein<'c>, f64, i8, u32)>,
@@ -491,7 +487,7 @@ impl<'c> PieceIsolator<'c> {
                 continue;
             }
             let (x, y, s_x, s_y, halvings) = self.segments.pop()?;
-            match DdBernstein::new(self.c, (x, y), (s_x, s_y)) {
+            match DdBernstein::new(self.c, (x, y), (s_x, s_y), dd_sign) {
                 Some(run) => self.fast = Some((run, y, s_y, halvings)),
                 None => self.stack.push((x, y, s_x, s_y, Tier::Dd, 0)),
             }
