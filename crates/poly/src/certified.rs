@@ -67,6 +67,10 @@ pub(crate) struct CertifiedSearch<'p> {
     p: &'p Poly<f64>,
     first_only: bool,
     runs_left: u32,
+    /// Some piece of this query went to adaptive precision: the rest of the query goes there
+    /// too (its de Casteljau run costs little more than an `f64` run that would get stuck
+    /// the same way; `paper-notes/isolation.md`).
+    went_adaptive: bool,
     /// Subdivisions so far, over all runs.
     splits: u32,
     /// The exact Sturm sequence of the stored polynomial, built on first need.
@@ -102,6 +106,7 @@ impl<'p> CertifiedSearch<'p> {
             p,
             first_only,
             runs_left: MAX_RUNS,
+            went_adaptive: false,
             splits: 0,
             exact: None,
             found: SmallVec::new(),
@@ -170,7 +175,7 @@ impl<'p> CertifiedSearch<'p> {
         if lo >= hi {
             return false;
         }
-        if self.runs_left == 0 {
+        if self.runs_left == 0 || self.went_adaptive {
             return self.adaptive(lo, hi, s, stats);
         }
         self.runs_left -= 1;
@@ -229,6 +234,7 @@ impl<'p> CertifiedSearch<'p> {
     /// double-double, then arbitrary precision ([`PieceIsolator`]); what even that cannot
     /// decide is isolated exactly. True when the search is over.
     fn adaptive(&mut self, lo: f64, hi: f64, s: (i8, i8), stats: &mut RootStats) -> bool {
+        self.went_adaptive = true;
         let mut piece = PieceIsolator::new(self.p.coeffs(), (lo, hi), s, stats);
         while let Some(outcome) = piece.next(stats) {
             let done = match outcome {

@@ -203,6 +203,19 @@ pub(crate) fn certified_value(c: &[f64], x: f64) -> (f64, i8) {
     }
 }
 
+/// `Σ|cᵢ|·rⁱ` rounded up (Horner on non-negative numbers is increasing; `2n + 2` roundings,
+/// inflated for them), and `Σ rⁱ` likewise.
+pub(crate) fn abs_weights(c: &[f64], r: f64) -> (f64, f64) {
+    let r = r * (1.0 + 2.0 * f64::EPSILON);
+    let (mut s, mut z) = (0.0f64, 0.0f64);
+    for &ci in c.iter().rev() {
+        s = s * r + ci.abs();
+        z = z * r + 1.0;
+    }
+    let inflate = 1.0 + 2.0 * gamma_ratio_upper(2 * c.len() + 2);
+    (s * inflate, z * inflate)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

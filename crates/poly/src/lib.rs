@@ -56,6 +56,8 @@ mod bernstein;
 mod bivariate;
 mod certified;
 mod closed_form;
+mod dd_bernstein;
+mod double_double;
 mod eval_bound;
 mod exact_bisection;
 mod int_poly;

@@ -24,24 +24,16 @@
 
 use astro_float::{BigFloat, RoundingMode};
 
+use smallvec::SmallVec;
+
 use crate::bernstein::Bracket;
-use crate::eval_bound::certified_sign;
+use crate::dd_bernstein::{DdBernstein, DdOutcome};
+use crate::double_double::{DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, two_sum};
+use crate::eval_bound::{abs_weights, certified_sign};
+use crate::scalar::rat_from_f64;
 use crate::stats::RootStats;
-use crate::univariate::ETA;
-
-/// Unit roundoff of the double-double operations used here, as a bound valid for all of
-/// them: `8u²` with `u = 2^-53`. Joldes, Muller & Popescu, "Tight and rigorous error bounds
-/// for basic building blocks of double-word arithmetic" (ACM TOMS 44, 2017) prove relative
-/// errors `3u²/(1 − 4u)` for the sum of two double-words (their Algorithm 6), `2u²` for a
-/// double-word times a double (Algorithm 9) and `5u²` for the product of two double-words
-/// (Algorithm 12); `8u²` covers each with room for the `(1 − 4u)` factors.
-const DD_UNIT: f64 = 8.0 * (0.5 * f64::EPSILON) * (0.5 * f64::EPSILON);
-
-/// Absolute error allowed per double-double operation for underflow: each uses at most four
-/// `f64` products or fused multiply–adds, whose error terms are exact only when no underflow
-/// occurs; an underflowing rounding errs by at most `2^-1075` absolutely. (Sums of `f64`
-/// numbers never err by underflow.) So `4·2^-1075 < 2^-1072`, rounded up to a power of two.
-const DD_UNDERFLOW: f64 = 4.0 * ETA;
+use crate::univariate::Poly;
+use num_traits::Zero;
 
 /// Precision of the first arbitrary-precision tier, in bits (the next after double-double's
 /// 106); each further tier doubles it.
@@ -59,6 +51,11 @@ const MAX_NODES: u32 = 4096;
 /// Deepest bisection of one piece: 64 halvings cover any `f64` interval of one binade down to
 /// adjacent numbers; past that the node is left to exact isolation.
 const MAX_DEPTH: u32 = 96;
+
+/// How many times the rest of a segment that a double-double de Casteljau run could not
+/// finish is halved into fresh runs (each halving can shrink the bound `M` by up to `2ⁿ`)
+/// before the per-node tiers take over.
+const SEGMENT_HALVINGS: u32 = 6;
 
 /// Non-dyadic fractions tried when a midpoint's sign is undecided at every tier (`√2 − 1`
 /// and its complement): a root sitting exactly on the midpoint is then avoided.
@@ -85,104 +82,6 @@ impl Tier {
 }
 
 // ---------------------------------------------------------------------------------------
-// Double-double arithmetic (Joldes–Muller–Popescu 2017).
-
-/// A double-double number `hi + lo`, `|lo| ≤ ulp(hi)/2`.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct Dd {
-    hi: f64,
-    lo: f64,
-}
-
-/// Knuth's TwoSum: `s + e = a + b` exactly (no overflow).
-#[inline]
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bb = s - a;
-    (s, (a - (s - bb)) + (b - bb))
-}
-
-/// Dekker's Fast2Sum (`|a| ≥ |b|` or `a = 0`): `s + e = a + b` exactly.
-#[inline]
-fn fast_two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    (s, b - (s - a))
-}
-
-/// TwoProduct by fused multiply–add: `p + e = a·b` exactly without underflow.
-#[inline]
-fn two_prod(a: f64, b: f64) -> (f64, f64) {
-    let p = a * b;
-    (p, a.mul_add(b, -p))
-}
-
-impl Dd {
-    #[inline]
-    fn from_f64(x: f64) -> Dd {
-        Dd { hi: x, lo: 0.0 }
-    }
-
-    /// Algorithm 6 of Joldes et al. (accurate double-word sum).
-    #[inline]
-    fn add(self, y: Dd) -> Dd {
-        let (sh, sl) = two_sum(self.hi, y.hi);
-        let (th, tl) = two_sum(self.lo, y.lo);
-        let c = sl + th;
-        let (vh, vl) = fast_two_sum(sh, c);
-        let w = tl + vl;
-        let (hi, lo) = fast_two_sum(vh, w);
-        Dd { hi, lo }
-    }
-
-    /// Algorithm 4 of Joldes et al. (double-word plus double).
-    #[inline]
-    fn add_f(self, y: f64) -> Dd {
-        let (sh, sl) = two_sum(self.hi, y);
-        let v = self.lo + sl;
-        let (hi, lo) = fast_two_sum(sh, v);
-        Dd { hi, lo }
-    }
-
-    /// Algorithm 9 of Joldes et al. (double-word times double).
-    #[inline]
-    fn mul_f(self, y: f64) -> Dd {
-        let (ch, cl1) = two_prod(self.hi, y);
-        let cl2 = self.lo * y;
-        let (th, tl1) = fast_two_sum(ch, cl2);
-        let tl2 = tl1 + cl1;
-        let (hi, lo) = fast_two_sum(th, tl2);
-        Dd { hi, lo }
-    }
-
-    /// Algorithm 12 of Joldes et al. (double-word times double-word).
-    #[inline]
-    fn mul(self, y: Dd) -> Dd {
-        let (ch, cl1) = two_prod(self.hi, y.hi);
-        let tl0 = self.lo * y.lo;
-        let tl1 = self.hi.mul_add(y.lo, tl0);
-        let cl2 = self.lo.mul_add(y.hi, tl1);
-        let cl3 = cl1 + cl2;
-        let (hi, lo) = fast_two_sum(ch, cl3);
-        Dd { hi, lo }
-    }
-
-    /// The sign of the exact value when `|value| > bound` is certain, else 0. `|lo| ≤
-    /// ulp(hi)/2 ≤ 2^-53·|hi|`, so `|value| ≥ |hi|·(1 − 2^-53)`.
-    #[inline]
-    fn sign_beyond(self, bound: f64) -> i8 {
-        if !(self.hi.is_finite() && self.lo.is_finite()) {
-            return 0;
-        }
-        let lower = self.hi.abs() * (1.0 - f64::EPSILON);
-        if lower > bound {
-            if self.hi > 0.0 { 1 } else { -1 }
-        } else {
-            0
-        }
-    }
-}
-
-// ---------------------------------------------------------------------------------------
 // The tier-generic operations.
 
 /// The operations a tier provides for the Taylor shift, the basis change and Horner's rule.
@@ -203,16 +102,6 @@ trait Arith {
     fn underflow(&self) -> f64;
 }
 
-/// `γ(k) = k·u/(1 − k·u)` for unit roundoff `u`, rounded up; infinite when `k·u ≥ 1/2`.
-fn gamma_u(k: usize, u: f64) -> f64 {
-    let ku = k as f64 * u;
-    if ku >= 0.5 {
-        f64::INFINITY
-    } else {
-        ku / (1.0 - ku) * (1.0 + 4.0 * f64::EPSILON)
-    }
-}
-
 struct DdArith;
 
 impl Arith for DdArith {
@@ -221,7 +110,7 @@ impl Arith for DdArith {
         Dd::from_f64(x)
     }
     fn exact_pair(&self, hi: f64, lo: f64) -> Dd {
-        Dd { hi, lo }
+        Dd::from_pair(hi, lo)
     }
     fn add(&self, x: &Dd, y: &Dd) -> Dd {
         x.add(*y)
@@ -322,19 +211,6 @@ impl Arith for BigArith {
 // ---------------------------------------------------------------------------------------
 // Certified point signs.
 
-/// `Σ|cᵢ|·rⁱ` rounded up (Horner on non-negative numbers is increasing; `2n + 2` roundings,
-/// inflated for them), and `Σ rⁱ` likewise.
-fn abs_weights(c: &[f64], r: f64) -> (f64, f64) {
-    let r = r * (1.0 + 2.0 * f64::EPSILON);
-    let (mut s, mut z) = (0.0f64, 0.0f64);
-    for &ci in c.iter().rev() {
-        s = s * r + ci.abs();
-        z = z * r + 1.0;
-    }
-    let inflate = 1.0 + 2.0 * crate::eval_bound::gamma_ratio_upper(2 * c.len() + 2);
-    (s * inflate, z * inflate)
-}
-
 /// The sign of `p(x)` at one tier by Horner's rule (`2n` roundings), certified, or 0.
 fn horner_sign<A: Arith>(ar: &A, c: &[f64], x: f64) -> i8 {
     let n = c.len() - 1;
@@ -349,6 +225,11 @@ fn horner_sign<A: Arith>(ar: &A, c: &[f64], x: f64) -> i8 {
     // Underflow errors are amplified by at most |x| per later step: Σ|x|ⁱ per operation.
     let tiny = 2.0 * ar.underflow() * z;
     ar.sign_beyond(&v, 2 * n, s, tiny)
+}
+
+/// [`point_sign`] from double-double up, as the sign function of [`DdBernstein`].
+fn dd_sign(c: &[f64], x: f64) -> i8 {
+    point_sign(c, x, Tier::Dd).0
 }
 
 /// The certified sign of `p(x)`: the `f64` tiers of [`certified_sign`], then each wide tier
@@ -513,14 +394,28 @@ pub(crate) enum Outcome {
 /// starts at, its depth.
 type Node = (f64, f64, i8, i8, Tier, u32);
 
+/// A segment of a piece: `(x, y]`, the certified signs at its ends, and how many halvings
+/// of a de Casteljau run's rest made it.
+type Segment = (f64, f64, i8, i8, u32);
+
 /// Isolation of the roots of `p` (coefficients `c`, degree ≥ 1) in `(lo, hi]`, where `p(lo)`
 /// and `p(hi)` have certified non-zero signs, by bisection at `f64` points with each node
 /// classified afresh at its own tier, starting at double-double. [`next`](Self::next) yields
 /// the outcomes in increasing order, so a smallest-root query stops at the first root (an
 /// undecided piece may hold none: the caller decides it exactly and asks for more).
+///
+/// Each segment (the piece, or its two sides of 0) is first given to the double-double de
+/// Casteljau run ([`DdBernstein`], one Taylor shift for the whole segment); only what that
+/// run hands back is bisected here with a fresh shift per node.
 pub(crate) struct PieceIsolator<'c> {
     c: &'c [f64],
-    stack: Vec<Node>,
+    /// Segments not started yet, the next on top: `(x, y]` with the signs at the ends and
+    /// the number of halvings that made it.
+    segments: SmallVec<[Segment; 4]>,
+    /// The de Casteljau run on the current segment, with that segment's end, its sign and
+    /// halvings.
+    fast: Option<(DdBernstein<'c>, f64, i8, u32)>,
+    stack: SmallVec<[Node; 16]>,
     nodes: u32,
     used_big: bool,
     sc: Scratch,
@@ -536,19 +431,21 @@ impl<'c> PieceIsolator<'c> {
         stats: &mut RootStats,
     ) -> Self {
         stats.adaptive_pieces += 1;
-        let mut stack = Vec::new();
+        let mut segments = SmallVec::new();
         // A piece straddling 0 is split there first (p(0) = c₀ exactly), so that every node
         // has `max(|x|, |y|)` no larger than needed in its bound `M`.
         if lo < 0.0 && 0.0 < hi && c[0] != 0.0 {
             let s0 = if c[0] > 0.0 { 1 } else { -1 };
-            stack.push((0.0, hi, s0, s_hi, Tier::Dd, 0));
-            stack.push((lo, 0.0, s_lo, s0, Tier::Dd, 0));
+            segments.push((0.0, hi, s0, s_hi, 0));
+            segments.push((lo, 0.0, s_lo, s0, 0));
         } else {
-            stack.push((lo, hi, s_lo, s_hi, Tier::Dd, 0));
+            segments.push((lo, hi, s_lo, s_hi, 0));
         }
         PieceIsolator {
             c,
-            stack,
+            segments,
+            fast: None,
+            stack: SmallVec::new(),
             nodes: 0,
             used_big: false,
             sc: Scratch::default(),
@@ -558,6 +455,48 @@ impl<'c> PieceIsolator<'c> {
     /// The next outcome, left to right; `None` when the piece is done. Counts
     /// [`RootStats::multiprecision_pieces`] once when a tier above double-double was used.
     pub(crate) fn next(&mut self, stats: &mut RootStats) -> Option<Outcome> {
+        loop {
+            if let Some((run, y, s_y, halvings)) = &mut self.fast {
+                match run.next(stats) {
+                    Some(DdOutcome::Bracket(b)) => return Some(Outcome::Bracket(b)),
+                    Some(DdOutcome::Handoff { t_a, s_a }) => {
+                        let (y, s_y, halvings) = (*y, *s_y, *halvings);
+                        self.fast = None;
+                        // A fresh run on each half of the rest: its bound M shrinks with the
+                        // segment's distance from 0 (as the f64 path's restarts do), up to
+                        // SEGMENT_HALVINGS times; then the per-node tiers take the rest.
+                        let split = (halvings < SEGMENT_HALVINGS && t_a < y)
+                            .then(|| split_point(self.c, t_a, y, Tier::Dd))
+                            .flatten();
+                        match split {
+                            Some((m, s_m, _)) => {
+                                self.segments.push((m, y, s_m, s_y, halvings + 1));
+                                self.segments.push((t_a, m, s_a, s_m, halvings + 1));
+                            }
+                            None if t_a < y => self.stack.push((t_a, y, s_a, s_y, Tier::Dd, 0)),
+                            None => {}
+                        }
+                    }
+                    None => self.fast = None,
+                }
+            }
+            if let Some(outcome) = self.next_node(stats) {
+                return Some(outcome);
+            }
+            if !self.stack.is_empty() {
+                continue;
+            }
+            let (x, y, s_x, s_y, halvings) = self.segments.pop()?;
+            match DdBernstein::new(self.c, (x, y), (s_x, s_y), dd_sign) {
+                Some(run) => self.fast = Some((run, y, s_y, halvings)),
+                None => self.stack.push((x, y, s_x, s_y, Tier::Dd, 0)),
+            }
+        }
+    }
+
+    /// The per-node bisection of the stack: the next outcome, or `None` when the stack is
+    /// empty.
+    fn next_node(&mut self, stats: &mut RootStats) -> Option<Outcome> {
         let c = self.c;
         while let Some((x, y, s_x, s_y, tier, depth)) = self.stack.pop() {
             if self.nodes >= MAX_NODES || depth >= MAX_DEPTH {
@@ -640,7 +579,14 @@ pub(crate) fn refine_wide(c: &[f64], b: Bracket, x_tol: f64, stats: &mut RootSta
             let m = lo + 0.5 * (hi - lo);
             return Some(if m > lo && m < hi { m } else { lo });
         }
-        let (m, s, t) = split_point(c, lo, hi, tier)?;
+        let Some((m, s, t)) = split_point(c, lo, hi, tier) else {
+            // No point is signed even at MAX_BITS: the midpoint may be the root itself (a
+            // stored polynomial with an exact f64 root, as Vieta's products of f64 roots
+            // have). One exact evaluation there (n rational operations, no Sturm sequence)
+            // tells; the bracket holds one distinct root, so a zero is that root.
+            let mid = lo + 0.5 * (hi - lo);
+            return (mid > lo && mid < hi && is_exact_root(c, mid)).then_some(mid);
+        };
         stats.refine_evals += 1;
         tier = t;
         if s == s_lo {
@@ -649,6 +595,14 @@ pub(crate) fn refine_wide(c: &[f64], b: Bracket, x_tol: f64, stats: &mut RootSta
             hi = m;
         }
     }
+}
+
+/// Whether `p(x) = 0` exactly (Horner's rule in rationals on the stored coefficients).
+fn is_exact_root(c: &[f64], x: f64) -> bool {
+    let (Some(xr), Some(poly)) = (rat_from_f64(x), Poly::new(c.to_vec()).to_rat()) else {
+        return false;
+    };
+    poly.eval(&xr).is_zero()
 }
 
 #[cfg(test)]
@@ -893,6 +847,24 @@ mod tests {
             let p = kac(d, seed);
             check_all(&p, -3.0, 3.0, 1e-12, &mut stats);
         }
+    }
+
+    /// Orellana–De Michele's case 1, `(x − 1)(x − 1e3)(x − 1e6)(x − 1e9)` by Vieta's
+    /// formulas: the stored coefficients are exact, so every root is an exact `f64` where no
+    /// precision can sign `p`. With `x_tol = 0` the refinement used to finish each root with
+    /// the exact Sturm sequence; one exact evaluation at the root now suffices.
+    #[test]
+    fn exact_f64_roots_refine_to_full_precision_without_a_sturm_sequence() {
+        let p = exact_product(&[1.0, 1e3, 1e6, 1e9]).expect("exact coefficients");
+        let mut stats = RootStats::default();
+        check_all(&p, -2.0, 2e9, 0.0, &mut stats);
+        let roots = p.real_roots(-2.0, 2e9, 0.0).unwrap();
+        assert_eq!(roots, vec![1.0, 1e3, 1e6, 1e9], "each root exactly");
+        assert_eq!(
+            (stats.exact_fallbacks, stats.refine_fallbacks),
+            (0, 0),
+            "no exact sequence: {stats:?}"
+        );
     }
 
     proptest! {
