@@ -48,6 +48,35 @@ pub(crate) fn linear_smallest(c: &[f64], t_min: f64, t_max: f64) -> Option<Optio
     }
 }
 
+/// The root of the line `c0 + c1·x` when it lies in `(t_min, t_max]`, for callers that
+/// restrict a plane to a ray and need no query set-up (polygon meshes).
+///
+/// Returns `Some(Some(r))` with the root, `Some(None)` when there is certainly no root in
+/// the interval (also for `c1 = 0` with `c0 ≠ 0`: a line parallel to the plane), and `None`
+/// when undecided — the root within one ulp of an interval end, `c0 = c1 = 0`, or non-finite
+/// input — in which case the caller runs the general certified query ([`crate::PolyRef`]).
+///
+/// # Accuracy
+/// `r = fl(−c0/c1)` is correctly rounded: `|r − root| ≤ ½ ulp(root)` for the line as stored.
+/// Membership of `(t_min, t_max]` is decided with a margin of one ulp on each side.
+///
+/// # Examples
+/// ```
+/// // 2x − 3 = 0 at x = 1.5.
+/// assert_eq!(poly::linear_root_in(-3.0, 2.0, 0.0, 2.0), Some(Some(1.5)));
+/// assert_eq!(poly::linear_root_in(-3.0, 2.0, 2.0, 3.0), Some(None));
+/// ```
+#[inline]
+pub fn linear_root_in(c0: f64, c1: f64, t_min: f64, t_max: f64) -> Option<Option<f64>> {
+    if !(c0.is_finite() && c1.is_finite()) || (c0 == 0.0 && c1 == 0.0) {
+        return None;
+    }
+    if c1 == 0.0 {
+        return Some(None);
+    }
+    linear_smallest(&[c0, c1], t_min, t_max)
+}
+
 /// The smallest root of `c0 + c1·x + c2·x²` in `(t_min, t_max]`: `Some(Some(r))` with
 /// `|r − root| ≤ max(tol.abs, tol.rel·|root|)`, `Some(None)` when there is certainly none,
 /// `None` when undecided (near-double root, a root within the tolerance of an interval end,
@@ -199,6 +228,14 @@ mod tests {
             Some(Some(-1.0)),
             "−1"
         );
+    }
+
+    #[test]
+    fn linear_root_in_handles_parallel_and_degenerate_lines() {
+        assert_eq!(linear_root_in(1.0, 0.0, 0.0, 10.0), Some(None), "parallel");
+        assert_eq!(linear_root_in(0.0, 0.0, 0.0, 10.0), None, "in the plane");
+        assert_eq!(linear_root_in(f64::NAN, 1.0, 0.0, 10.0), None, "NaN");
+        assert_eq!(linear_root_in(-4.0, 2.0, 0.0, 10.0), Some(Some(2.0)), "2");
     }
 
     #[test]

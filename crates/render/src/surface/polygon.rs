@@ -2,9 +2,10 @@
 //!
 //! A planar test, not a root query: the ray is clipped to the polygon's (padded) box and its
 //! origin moved to the box entry as on the shared implicit path, then the plane
-//! `n·(p − v₀) = 0` restricted to it, `c₀ + c₁s`, has its one root `s = −c₀/c₁` — the value
-//! `poly`'s linear closed form computes, correctly rounded — without the query's set-up, which
-//! dominated the cost of a polygon test (`paper-notes/bvh.md` §3). The hit is kept when it
+//! `n·(p − v₀) = 0` restricted to it, `c₀ + c₁s`, has its one root `s = −c₀/c₁`, computed by
+//! `poly`'s linear closed form ([`poly::linear_root_in`], correctly rounded; the rare root within
+//! an ulp of the segment's ends goes to the general certified query) without the query's
+//! set-up, which dominated the cost of a polygon test (`paper-notes/bvh.md` §3). The hit is kept when it
 //! lies inside the polygon (crossing-number test in the plane's dominant projection, which
 //! handles convex and concave simple polygons); normals and error bounds come from the
 //! plane's implicit `F` as before.
@@ -83,7 +84,7 @@ impl Polygon {
         ws: &mut Workspace,
     ) -> Option<(f64, DVec3)> {
         let range_start = t_range.start;
-        let seg = clip(Some(&self.bounds), ray, t_range, ws, self.plane.kind())?;
+        let seg = clip(Some(&self.bounds), ray, t_range.clone(), ws, self.plane.kind())?;
         let entry = seg.start;
         let t0 = entry + search_start(range_start, entry, seg.end - entry);
         let o = ray.at(t0);
@@ -92,9 +93,13 @@ impl Polygon {
             plane.normal().dot(o - plane.origin()),
             plane.normal().dot(ray.dir),
         );
-        // A ray parallel to the plane gives ±∞ or NaN, outside the range.
-        let s = -c0 / c1;
-        (s > 0.0 && s <= seg.end - t0).then(|| (t0 + s, o + ray.dir * s))
+        match poly::linear_root_in(c0, c1, 0.0, seg.end - t0) {
+            Some(Some(s)) => Some((t0 + s, o + ray.dir * s)),
+            Some(None) => None,
+            // The root within an ulp of the segment's ends, or the ray lying in the plane:
+            // the general certified query on the same restriction decides.
+            None => self.plane.nearest(ray, t_range, ws, false),
+        }
     }
 
     fn project(&self, v: DVec3) -> DVec2 {
