@@ -325,3 +325,41 @@ fn cr_line_endings_in_bpt_control_point_and_nff_files() {
     let e = render::scene::parse_nff("v\rfrom 0 0 x\r", Path::new("t.nff")).unwrap_err();
     assert_eq!(e.span().unwrap().line, 2, "a lone CR ends an NFF line: {e}");
 }
+
+/// The two planes `x = ±1` written as `x^32 − 1 = 0`: `f64` cannot decide the signs of the
+/// degree-32 restriction, so its rays escalate to adaptive precision and exact arithmetic
+/// (issue 13, item 10: 60 ms per ray then).
+const X32: &str = "#object Type = SPHERE Center = (4,0,0) Radius = 1\n\
+                   #object Type = ALGEBRAIC_SURFACE Equation = x^32 - 1\n";
+
+/// Caught: `--stats` did not show why a render was slow (item 10). The slowest cell is
+/// reported with its root-query escalations, and the object its camera ray spent longest on
+/// is the degree-32 surface (object 2), not the sphere, with the escalations it needed.
+#[test]
+fn stats_name_the_slowest_cell_and_its_object() {
+    let scene = parse(&format!("{CAMERA}{X32}"), Path::new("r.scene")).unwrap();
+    let prepared = PreparedScene::new(&scene).unwrap();
+    let settings = RenderSettings {
+        size: [4, 4],
+        resolution: [1, 1],
+        samples: 1,
+        depth: false,
+    };
+    let out = render(&prepared, &scene.camera, &settings, &|_| {});
+    let slowest = out.stats.slowest.expect("a slowest cell");
+    assert!(slowest.rays >= 1, "{slowest:?}");
+    let e = slowest.escalations;
+    assert!(e.queries >= 1, "{slowest:?}");
+    let object = slowest.object.expect("an object was tested");
+    assert_eq!(object.index, 1, "the degree-32 surface: {slowest:?}");
+    let o = object.escalations;
+    assert!(
+        o.adaptive_pieces + o.exact_fallbacks + o.adaptive_refines + o.refine_fallbacks > 0,
+        "its ray went beyond f64: {o:?}"
+    );
+    let report = format!("{slowest}");
+    assert!(
+        report.contains("object 2 (ALGEBRAIC") && report.contains("exact-rational fallbacks"),
+        "{report}"
+    );
+}
