@@ -29,3 +29,5 @@ mod aggregate_bvh;
 mod nff_files;
 // Cones and cylinders (issue 12): coverage and depth against closed forms; an SPD golden image.
 mod render_cones;
+// Every --isolation method on every scene of scenes/ agrees with the exact reference (issue 13).
+mod isolation_scenes;

@@ -267,3 +267,62 @@ fn a_signal_stops_the_render_and_leaves_no_temporary() {
         "the old output is kept"
     );
 }
+
+/// Caught: a render whose every ray is slow (the exact-arithmetic fallback of `x^32 − 1`,
+/// about 60 ms per ray in the issue) could not be stopped promptly (item 10). SIGINT stops
+/// it within one cell's rays: well under the seconds the whole image would take, leaving no
+/// temporary and exiting with 130.
+#[cfg(unix)]
+#[test]
+fn ctrl_c_stops_a_render_of_slow_rays_promptly() {
+    use std::time::{Duration, Instant};
+    let dir = tempfile::tempdir().unwrap();
+    let scene = SCENE.replace(
+        "Type = TORUS\nCenter = (0,0,0)\nAxis = (0,0,1)\nMajorRadius = 2\nMinorRadius = 1\n",
+        "Type = ALGEBRAIC_SURFACE\nEquation = x^32 - 1\n",
+    );
+    assert!(scene.contains("x^32"), "the torus was replaced");
+    std::fs::write(dir.path().join("t.scene"), scene).unwrap();
+    // 256² slow rays on one thread: minutes.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_render"))
+        .args([
+            "t.scene",
+            "-o",
+            "x.png",
+            "--size",
+            "256x256",
+            "--threads",
+            "1",
+        ])
+        .current_dir(dir.path())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while temporaries(dir.path()).is_empty() && start.elapsed() < Duration::from_secs(60) {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    assert!(!temporaries(dir.path()).is_empty(), "the render started");
+    std::thread::sleep(Duration::from_millis(200));
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success(), "kill ran");
+    let stopped = Instant::now();
+    let status = child.wait().unwrap();
+    // One cell is one ray here (tens of milliseconds in a debug build); 5 s allows a loaded
+    // machine, while finishing the image would take minutes.
+    assert!(
+        stopped.elapsed() < Duration::from_secs(5),
+        "stopped promptly: {:?}",
+        stopped.elapsed()
+    );
+    assert_eq!(
+        status.code(),
+        Some(130),
+        "exit status of an interrupted run"
+    );
+    assert!(temporaries(dir.path()).is_empty(), "temporaries removed");
+    assert!(!dir.path().join("x.png").exists(), "no partial output");
+}

@@ -2,6 +2,7 @@
 //! resolution, rayon over rows with per-thread statistics.
 
 use std::sync::atomic::{AtomicU32, Ordering};
+use std::time::Instant;
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -10,7 +11,7 @@ use crate::camera::Camera;
 use crate::cancel::{Cancel, Cancelled};
 use crate::prepared::PreparedScene;
 use crate::scene::{CameraSpec, Rgb};
-use crate::stats::TraceStats;
+use crate::stats::{Escalations, SlowObject, SlowestCell, TraceStats};
 use crate::whitted::{nearest_hit, trace_primary};
 use crate::workspace::Workspace;
 
@@ -116,7 +117,20 @@ pub fn render_with_cancel(
                 let x0 = cx * rx as usize;
                 let cols = (rx as usize).min(w - x0);
                 let cell = [x0 as f64, y0 as f64, cols as f64, rows as f64];
+                let started = Instant::now();
+                let before = (Escalations::of(&ws.stats.roots), ws.stats.total_rays());
                 let (color, alpha, centre_depth) = render_cell(scene, &camera, cell, n, ws);
+                let elapsed = started.elapsed();
+                if ws.stats.slowest.is_none_or(|s| elapsed > s.elapsed) {
+                    ws.stats.slowest = Some(SlowestCell {
+                        pixel: [x0 as u32, y0 as u32],
+                        size: [cols as u32, rows as u32],
+                        elapsed,
+                        rays: ws.stats.total_rays() - before.1,
+                        escalations: Escalations::of(&ws.stats.roots).since(&before.0),
+                        object: None,
+                    });
+                }
                 let px = [color.x as f32, color.y as f32, color.z as f32, alpha as f32];
                 let d = match (settings.depth, centre_depth) {
                     (false, _) => 0.0,
@@ -170,6 +184,9 @@ pub fn render_with_cancel(
     };
     stats.bvh = scene.aggregate.bvh_info();
     cancel.check()?;
+    if let Some(slowest) = &mut stats.slowest {
+        slowest.object = slowest_object(scene, &camera, slowest);
+    }
     let film = Film {
         width,
         height,
@@ -218,6 +235,34 @@ fn render_cell(
     }
     let count = f64::from(n * n);
     (sum / count, f64::from(hits) / count, None)
+}
+
+/// The object whose nearest-hit query on the centre camera ray of `cell` takes longest, each
+/// object queried alone with a fresh workspace (one ray per object, after the render).
+fn slowest_object(
+    scene: &PreparedScene,
+    camera: &Camera,
+    cell: &SlowestCell,
+) -> Option<SlowObject> {
+    let [x, y] = cell.pixel.map(f64::from);
+    let [w, h] = cell.size.map(f64::from);
+    let ray = camera.ray(x + w / 2.0, y + h / 2.0);
+    let mut slowest: Option<SlowObject> = None;
+    for (index, p) in scene.primitives.iter().enumerate() {
+        let mut ws = Workspace::new();
+        let started = Instant::now();
+        let _ = p.surface.intersect(&ray, 0.0..f64::INFINITY, &mut ws);
+        let elapsed = started.elapsed();
+        if slowest.is_none_or(|s| elapsed > s.elapsed) {
+            slowest = Some(SlowObject {
+                index,
+                kind: p.surface.kind(),
+                elapsed,
+                escalations: Escalations::of(&ws.stats.roots),
+            });
+        }
+    }
+    slowest
 }
 
 /// Distance to the first hit through image position `(x, y)`, `+∞` for a miss.

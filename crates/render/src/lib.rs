@@ -124,6 +124,9 @@ pub use crate::pipeline::{
 };
 pub use crate::prepared::{PreparedScene, Primitive};
 pub use crate::scene::Scene;
-pub use crate::stats::{HIST_BINS, KindStats, PatchStats, PhaseTimes, StatsReport, TraceStats};
+pub use crate::stats::{
+    Escalations, HIST_BINS, KindStats, PatchStats, PhaseTimes, SlowObject, SlowestCell,
+    StatsReport, TraceStats,
+};
 pub use crate::trivariate::{Eval3, Poly3, RestrictScratch, Term3};
 pub use crate::workspace::Workspace;

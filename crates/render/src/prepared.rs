@@ -5,7 +5,8 @@ use crate::aggregate::{Aggregate, PRUNE_SLACK_REL};
 use crate::geometry::{Bounds3, Transform};
 use crate::methods::{PatchMethod, RootMethods};
 use crate::scene::{
-    BoundingVolume, Light, Material, SceneInvalid, ShapeKind, Texture, ValidScene, World,
+    BoundingVolume, Light, Material, Object, Placement, SceneInvalid, ShapeKind, Texture,
+    ValidScene, World, cone_axis,
 };
 use crate::surface::{
     AaBox, Algebraic, BezierMesh, Implicit, ImplicitFn, Plane, Polygon, Sphere, Superquadric,
@@ -73,21 +74,12 @@ impl PreparedScene {
         };
         let mut primitives = Vec::with_capacity(scene.objects.len());
         for (index, object) in scene.objects.iter().enumerate() {
-            let bad = |key, reason| SceneInvalid::Object {
-                index,
-                error: crate::scene::InvalidModel::new(key, reason),
-            };
-            let world_from_object = object
-                .transform
-                .world_from_object()
-                .ok_or_else(|| bad("Transform", "is singular"))?;
-            let surface = build_surface(
-                &object.shape,
-                &object.bounding,
-                &world_from_object,
-                &methods,
-            )
-            .ok_or_else(|| bad("Type", "has degenerate geometry"))?;
+            let bad = |error| SceneInvalid::Object { index, error };
+            // The builder checked the same placement where the keys have places.
+            let placement = object.placement().map_err(bad)?;
+            let surface = build_surface(object, &placement, &methods).ok_or(bad(
+                crate::scene::InvalidModel::new("Type", "has degenerate geometry"),
+            ))?;
             primitives.push(Primitive {
                 surface,
                 material: object.material.clone(),
@@ -131,53 +123,39 @@ fn implicit<F: ImplicitFn>(f: F, bounding: &BoundingVolume, roots: RootMethods) 
     clipped.with_root_methods(roots)
 }
 
-/// Builds the world-space surface of one shape. `bounding` is in the shape's coordinates;
-/// shapes placed by an internal frame (torus) get it through the same frame.
+/// Builds the world-space surface of one object placed by `placement`. The shape's bounding
+/// volume is in the object's coordinates; shapes with a frame of their own (torus) get it
+/// through that frame. `None` only for a shape [`ShapeKind::validate`] refuses.
 fn build_surface(
-    shape: &ShapeKind,
-    bounding: &BoundingVolume,
-    world_from_object: &Transform,
+    object: &Object,
+    placement: &Placement,
     methods: &Methods,
 ) -> Option<Box<dyn Surface>> {
     let roots = methods.roots;
-    Some(match shape {
+    let bounding = &object.bounding;
+    // The identity frame for shapes given in object coordinates: then this is
+    // `world_from_object`.
+    let world_from_shape = &placement.world_from_shape;
+    Some(match &object.shape {
         ShapeKind::Sphere { center, radius } => place(
             implicit(Sphere::new(*center, *radius), bounding, roots),
-            world_from_object,
+            world_from_shape,
         ),
         ShapeKind::Plane { origin, normal } => place(
             implicit(Plane::new(*origin, *normal), bounding, roots),
-            world_from_object,
+            world_from_shape,
         ),
-        ShapeKind::Polygon { vertices } => place(Polygon::new(vertices)?, world_from_object),
-        ShapeKind::Triangle { vertices } => place(Polygon::new(vertices)?, world_from_object),
-        ShapeKind::Box { min, max } => place(AaBox::new(*min, *max), world_from_object),
-        ShapeKind::Superquadric {
-            center,
-            size,
-            power,
-        } => {
-            let frame = Transform::new(glam::DAffine3::from_translation(*center))?;
-            let m = world_from_object.compose(&frame)?;
-            place(
-                Superquadric::new(*size, *power).with_root_methods(roots),
-                &m,
-            )
-        }
-        ShapeKind::Torus {
-            center,
-            axis,
-            major,
-            minor,
-        } => {
-            // Canonical torus about z, placed by a rigid frame; the user box is expressed in
-            // the object's coordinates, so map it into the frame's.
-            let frame = if axis.x == 0.0 && axis.y == 0.0 && axis.z > 0.0 {
-                Transform::new(glam::DAffine3::from_translation(*center))?
-            } else {
-                Transform::frame(*center, *axis)?
-            };
-            let inverse = frame.inverse();
+        ShapeKind::Polygon { vertices } => place(Polygon::new(vertices)?, world_from_shape),
+        ShapeKind::Triangle { vertices } => place(Polygon::new(vertices)?, world_from_shape),
+        ShapeKind::Box { min, max } => place(AaBox::new(*min, *max), world_from_shape),
+        ShapeKind::Superquadric { size, power, .. } => place(
+            Superquadric::new(*size, *power).with_root_methods(roots),
+            world_from_shape,
+        ),
+        ShapeKind::Torus { major, minor, .. } => {
+            // The canonical torus about z; the user box is in the object's coordinates, so
+            // map it into the frame's.
+            let inverse = placement.object_from_shape.inverse();
             let local = match *bounding {
                 BoundingVolume::None => BoundingVolume::None,
                 BoundingVolume::Box { min, max } => {
@@ -193,16 +171,18 @@ fn build_surface(
                     radius,
                 },
             };
-            let m = world_from_object.compose(&frame)?;
-            place(implicit(Torus::new(*major, *minor), &local, roots), &m)
+            place(
+                implicit(Torus::new(*major, *minor), &local, roots),
+                world_from_shape,
+            )
         }
         ShapeKind::Algebraic { poly } => place(
             implicit(Algebraic::new(poly.clone()), bounding, roots),
-            world_from_object,
+            world_from_shape,
         ),
         ShapeKind::BezierPatches { patches, method } => place(
             BezierMesh::new(patches, methods.patch_method.unwrap_or(*method))?,
-            world_from_object,
+            world_from_shape,
         ),
         ShapeKind::Cone {
             base,
@@ -211,17 +191,15 @@ fn build_surface(
             apex_radius,
             caps,
         } => {
-            // Canonical cone along z from the base, placed by a rigid frame (as the torus).
-            let axis = *apex - *base;
-            let frame = Transform::frame(*base, axis)?;
-            let m = world_from_object.compose(&frame)?;
-            let cone = crate::surface::Cone::new(*base_radius, *apex_radius, axis.length(), *caps)
+            // The canonical cone along z from the base, placed by its frame (as the torus).
+            let (height, _) = cone_axis(*base, *apex).ok()?;
+            let cone = crate::surface::Cone::new(*base_radius, *apex_radius, height, *caps)
                 .with_root_methods(methods.roots);
-            place(cone, &m)
+            place(cone, world_from_shape)
         }
         ShapeKind::SmoothPolygon { vertices, normals } => place(
             crate::surface::SmoothPolygon::new(vertices, normals)?,
-            world_from_object,
+            world_from_shape,
         ),
     })
 }

@@ -1,6 +1,8 @@
-//! A mutation fuzzer over the scene language, on stable Rust (issue 13 "In the tree").
+//! A mutation fuzzer over the scene language and NFF, on stable Rust (issue 13 "In the
+//! tree").
 //!
-//! The corpus is every `scenes/*.scene`; each case applies a few random mutations (byte
+//! The corpus is every `scenes/*.scene` for the scene language, and every `scenes/spd/*.nff`
+//! plus [`NFF_SEED`] (one of each NFF entity) for NFF; each case applies a few random mutations (byte
 //! flips, deleted or duplicated ranges, swapped lines, and insertions of tokens that found
 //! bugs before: huge, tiny and zero numbers, huge exponents, zero vectors, deep nesting,
 //! control characters, lone `\r`, bytes that are not UTF-8) and then parses, prepares and
@@ -15,9 +17,9 @@
 //! and fails on a panic, on a parse slower than [`PARSE_BUDGET`], or on a scene that parses
 //! but that `PreparedScene::new` refuses without a location.
 //!
-//! Smoke run (part of `cargo test`): [`SMOKE_CASES`] cases, deterministic. Longer run:
+//! Smoke run (part of `cargo test`): [`SMOKE_CASES`] cases per language, deterministic.
+//! Longer run (both languages):
 //! `FUZZ_CASES=100000 FUZZ_SEED=7 cargo test --release -p render --test fuzz_scenes -- --nocapture`.
-//! The NFF parser, when it lands, gets its corpus and target in [`targets`].
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
@@ -25,7 +27,7 @@ use std::time::{Duration, Instant};
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use render::scene::{SceneError, parse};
+use render::scene::{SceneError, parse, parse_nff};
 use render::{Cancel, PreparedScene, RenderSettings, render_with_cancel};
 
 /// Cases of the smoke run (about ten seconds in a debug build on a loaded machine).
@@ -79,6 +81,20 @@ const INTERESTING: &[&str] = &[
     "1/0",
 ];
 
+/// One of each NFF entity (viewpoint, background, light, fill, cone, sphere, polygon, patch),
+/// so mutations reach every reader.
+const NFF_SEED: &str = "v\nfrom 0 -8 5\nat 0 0 0\nup 0 0 1\nangle 40\nhither 1\nresolution 4 4\n\
+                        b 0.1 0.2 0.3\nl 5 -5 10\nl 0 0 9 1 1 1\nf 1 0 0 1 0 0 0 0\n\
+                        c\n0 0 0 1\n0 0 2 0.5\ns 0 0 0 1\np 3\n0 0 0\n1 0 0\n0 1 0\n\
+                        pp 3\n0 0 1 0 0 1\n1 0 1 0 0 1\n0 1 1 0 0 1\n";
+
+/// The input languages.
+#[derive(Clone, Copy, Debug)]
+enum Language {
+    Scene,
+    Nff,
+}
+
 /// The classes of outcome.
 #[derive(Debug, Default)]
 struct Tally {
@@ -87,21 +103,29 @@ struct Tally {
     slow: usize,
 }
 
-fn corpus() -> Vec<(PathBuf, Vec<u8>)> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes");
+fn corpus(language: Language) -> Vec<(PathBuf, Vec<u8>)> {
+    let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes");
+    let (dir, ext) = match language {
+        Language::Scene => (scenes, "scene"),
+        Language::Nff => (scenes.join("spd"), "nff"),
+    };
     let mut files: Vec<_> = std::fs::read_dir(&dir)
-        .expect("scenes/ exists")
+        .expect("the corpus folder exists")
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|e| e == "scene"))
+        .filter(|p| p.extension().is_some_and(|e| e == ext))
         .collect();
     files.sort();
-    files
+    let mut corpus: Vec<_> = files
         .into_iter()
         .map(|p| {
             let bytes = std::fs::read(&p).unwrap();
             (p, bytes)
         })
-        .collect()
+        .collect();
+    if let Language::Nff = language {
+        corpus.push((PathBuf::from("seed.nff"), NFF_SEED.as_bytes().to_vec()));
+    }
+    corpus
 }
 
 fn mutate(rng: &mut ChaCha8Rng, bytes: &mut Vec<u8>) {
@@ -142,20 +166,30 @@ fn mutate(rng: &mut ChaCha8Rng, bytes: &mut Vec<u8>) {
 }
 
 /// Parses, prepares and renders one case; `Err` describes a failure.
-fn run_case(path: &Path, bytes: &[u8], tally: &mut Tally) -> Result<(), String> {
+fn run_case(
+    language: Language,
+    path: &Path,
+    bytes: &[u8],
+    tally: &mut Tally,
+) -> Result<(), String> {
     // Non-UTF-8 input goes through `load`'s check; the text itself through `parse`.
     let text = match std::str::from_utf8(bytes) {
         Ok(t) => t.to_owned(),
         Err(_) => {
             let dir = tempfile::tempdir().unwrap();
-            let file = dir.path().join("case.scene");
+            let file = dir
+                .path()
+                .join(path.file_name().unwrap_or("case.scene".as_ref()));
             std::fs::write(&file, bytes).unwrap();
             let e = render::scene::load(&file).expect_err("not UTF-8");
             return located(&e, tally);
         }
     };
     let start = Instant::now();
-    let parsed = parse(&text, path);
+    let parsed = match language {
+        Language::Scene => parse(&text, path),
+        Language::Nff => parse_nff(&text, path),
+    };
     if start.elapsed() > PARSE_BUDGET {
         return Err(format!("parse took {:?}", start.elapsed()));
     }
@@ -202,8 +236,8 @@ fn located(e: &SceneError, tally: &mut Tally) -> Result<(), String> {
 }
 
 /// Runs `cases` fuzz cases from `seed`; panics with every failing input.
-fn fuzz(seed: u64, cases: usize) -> Tally {
-    let corpus = corpus();
+fn fuzz(language: Language, seed: u64, cases: usize) -> Tally {
+    let corpus = corpus(language);
     assert!(!corpus.is_empty(), "the corpus has scenes");
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut tally = Tally::default();
@@ -212,7 +246,9 @@ fn fuzz(seed: u64, cases: usize) -> Tally {
         let (path, seed_bytes) = &corpus[rng.gen_range(0..corpus.len())];
         let mut bytes = seed_bytes.clone();
         mutate(&mut rng, &mut bytes);
-        let result = catch_unwind(AssertUnwindSafe(|| run_case(path, &bytes, &mut tally)));
+        let result = catch_unwind(AssertUnwindSafe(|| {
+            run_case(language, path, &bytes, &mut tally)
+        }));
         let failure = match result {
             Ok(Ok(())) => continue,
             Ok(Err(why)) => why,
@@ -224,7 +260,7 @@ fn fuzz(seed: u64, cases: usize) -> Tally {
             String::from_utf8_lossy(&bytes).escape_debug()
         ));
     }
-    eprintln!("fuzz_scenes seed {seed}: {cases} cases, {tally:?}");
+    eprintln!("fuzz_scenes {language:?} seed {seed}: {cases} cases, {tally:?}");
     assert!(
         failures.is_empty(),
         "{} failures:\n{}",
@@ -234,21 +270,33 @@ fn fuzz(seed: u64, cases: usize) -> Tally {
     tally
 }
 
-/// Fuzz targets by input language. The NFF parser (`render::scene::nff`, another branch)
-/// adds its own target here with the `.nff` files of `scenes/` as corpus.
+/// Fuzz targets by input language.
 mod targets {
+    use super::Language;
+
+    /// `(seed, cases)` from `FUZZ_SEED` and `FUZZ_CASES`, else the smoke run's.
+    fn run() -> (u64, usize) {
+        let var = |name: &str| std::env::var(name).ok().and_then(|v| v.parse().ok());
+        (
+            var("FUZZ_SEED").unwrap_or(13),
+            var("FUZZ_CASES").map_or(super::SMOKE_CASES, |c: u64| c as usize),
+        )
+    }
+
     /// The scene language: the bounded smoke run, every outcome rendered or located.
     #[test]
     fn fuzz_scene_language_smoke() {
-        let cases = std::env::var("FUZZ_CASES")
-            .ok()
-            .and_then(|v| v.parse().ok())
-            .unwrap_or(super::SMOKE_CASES);
-        let seed = std::env::var("FUZZ_SEED")
-            .ok()
-            .and_then(|v| v.parse().ok())
-            .unwrap_or(13);
-        let tally = super::fuzz(seed, cases);
+        let (seed, cases) = run();
+        let tally = super::fuzz(Language::Scene, seed, cases);
+        assert!(tally.located > 0, "mutations produce errors: {tally:?}");
+        assert!(tally.rendered > 0, "and valid scenes: {tally:?}");
+    }
+
+    /// NFF: the same classes of outcome.
+    #[test]
+    fn fuzz_nff_smoke() {
+        let (seed, cases) = run();
+        let tally = super::fuzz(Language::Nff, seed, cases);
         assert!(tally.located > 0, "mutations produce errors: {tally:?}");
         assert!(tally.rendered > 0, "and valid scenes: {tally:?}");
     }

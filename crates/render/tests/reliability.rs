@@ -246,3 +246,120 @@ fn a_cancelled_render_returns_cancelled() {
     let fresh = render_with_cancel(&prepared, &scene.camera, &settings, &|_| {}, &Cancel::new());
     assert!(fresh.is_ok(), "an uncancelled token renders");
 }
+
+/// Caught: geometry refused only when `PreparedScene` built the surfaces had no place
+/// ("object 1: Type has degenerate geometry", item 11): a torus whose centre overflows
+/// once `Scale` applies, a cone whose `Apex − Base` overflows or whose height underflows.
+/// A zero-area polygon now points at the corner key that completes it (not the `#object`),
+/// and a triangle with corners of size 1e-200 or 1e200 is not called degenerate because
+/// its normal's squared length under- or overflows.
+#[test]
+fn geometry_refused_when_placed_names_the_key() {
+    let torus = "#object Type = TORUS Center = (1e308,0,0) Axis = (0,0,1) MajorRadius = 2 \
+                 MinorRadius = 1 Scale = (10,10,10)";
+    let cone = |base: &str, apex: &str| {
+        format!("#object Type = CONE Base = {base} Apex = {apex} BaseRadius = 1 ApexRadius = 0")
+    };
+    for (text, place, why) in [
+        (torus.to_string(), "r.scene:3:22:", "`Center`"),
+        (
+            cone("(-1e308,0,0)", "(1e308,0,0)"),
+            "r.scene:3:41:",
+            "overflows",
+        ),
+        (
+            cone("(0,0,0)", "(0,0,1e-320)"),
+            "r.scene:3:36:",
+            "smallest normal",
+        ),
+        (
+            "#object Type = POLYGON a = (0,0,0) b = (1,0,0) c = (2,0,0) d = (3,0,0)".into(),
+            "r.scene:3:60:",
+            "zero area",
+        ),
+        (
+            "#object Type = TRIANGLE a = (0,0,0)\nc = (1,0,0)\nb = (1,0,0)".into(),
+            "r.scene:5:1:",
+            "zero area",
+        ),
+    ] {
+        let e = err(&text);
+        assert!(e.starts_with(place) && e.contains(why), "{text}: {e}");
+    }
+    for size in ["1e-200", "1e200"] {
+        let text = format!(
+            "{CAMERA}#object Type = TRIANGLE a = (0,0,0) b = ({size},0,0) c = (0,{size},0)"
+        );
+        let scene = parse(&text, Path::new("r.scene")).unwrap_or_else(|e| panic!("{size}: {e}"));
+        PreparedScene::new(&scene).unwrap_or_else(|e| panic!("{size}: {e}"));
+    }
+}
+
+/// Caught: `.bpt` and control-point files with CR-only line endings (old Mac files) were one
+/// long line, and NFF files likewise, while the scene language accepted them (item 13).
+#[test]
+fn cr_line_endings_in_bpt_control_point_and_nff_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let points: String = (0..4)
+        .flat_map(|i| (0..4).map(move |j| format!("{i} {j} {}\n", (i * j) % 3)))
+        .collect();
+    let bpt = format!("1\n3 3\n{points}");
+    let scene =
+        |file: &str| format!("{CAMERA}#object Type = BEZIER_MESH Control points = {file}\n");
+    let load = |name: &str, text: &str| {
+        std::fs::write(dir.path().join(name), text).unwrap();
+        let path = dir.path().join(format!("{name}.scene"));
+        std::fs::write(&path, scene(name)).unwrap();
+        render::scene::load(&path).unwrap_or_else(|e| panic!("{name}: {e}"))
+    };
+    let reference = load("lf.bpt", &bpt);
+    for (name, ending) in [("cr.bpt", "\r"), ("crlf.bpt", "\r\n")] {
+        let s = load(name, &bpt.replace('\n', ending));
+        assert_eq!(s.objects, reference.objects, "{name} reads as LF");
+    }
+    let nff = "v\nfrom 0 -8 5\nat 0 0 0\nup 0 0 1\nangle 40\nhither 1\nresolution 4 4\n\
+               l 5 -5 10\nf 1 0 0 1 0 0 0 0\ns 0 0 0 1\np 3\n0 0 0\n1 0 0\n0 1 0\n";
+    let lf = render::scene::parse_nff(nff, Path::new("t.nff")).unwrap();
+    let cr = render::scene::parse_nff(&nff.replace('\n', "\r"), Path::new("t.nff")).unwrap();
+    assert_eq!(cr, lf, "NFF with CR reads as LF");
+    let e = render::scene::parse_nff("v\rfrom 0 0 x\r", Path::new("t.nff")).unwrap_err();
+    assert_eq!(e.span().unwrap().line, 2, "a lone CR ends an NFF line: {e}");
+}
+
+/// The two planes `x = ±1` written as `x^32 − 1 = 0`: `f64` cannot decide the signs of the
+/// degree-32 restriction, so its rays escalate to adaptive precision and exact arithmetic
+/// (issue 13, item 10: 60 ms per ray then).
+const X32: &str = "#object Type = SPHERE Center = (4,0,0) Radius = 1\n\
+                   #object Type = ALGEBRAIC_SURFACE Equation = x^32 - 1\n";
+
+/// Caught: `--stats` did not show why a render was slow (item 10). The slowest cell is
+/// reported with its root-query escalations, and the object its camera ray spent longest on
+/// is the degree-32 surface (object 2), not the sphere, with the escalations it needed.
+#[test]
+fn stats_name_the_slowest_cell_and_its_object() {
+    let scene = parse(&format!("{CAMERA}{X32}"), Path::new("r.scene")).unwrap();
+    let prepared = PreparedScene::new(&scene).unwrap();
+    let settings = RenderSettings {
+        size: [4, 4],
+        resolution: [1, 1],
+        samples: 1,
+        depth: false,
+    };
+    let out = render(&prepared, &scene.camera, &settings, &|_| {});
+    let slowest = out.stats.slowest.expect("a slowest cell");
+    assert!(slowest.rays >= 1, "{slowest:?}");
+    let e = slowest.escalations;
+    assert!(e.queries >= 1, "{slowest:?}");
+    let object = slowest.object.expect("an object was tested");
+    assert_eq!(object.index, 1, "the degree-32 surface: {slowest:?}");
+    let o = object.escalations;
+    assert!(
+        o.adaptive_pieces + o.exact_fallbacks + o.adaptive_refines + o.refine_fallbacks > 0,
+        "its ray went beyond f64: {o:?}"
+    );
+    let report = format!("{slowest}");
+    assert!(
+        report.contains("object 2 (ALGEBRAIC") && report.contains("exact-rational fallbacks"),
+        "{report}"
+    );
+}

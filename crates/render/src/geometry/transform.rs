@@ -36,12 +36,10 @@ impl Transform {
     }
 
     /// A rigid map taking the origin to `origin` and the `z` axis to the unit vector along
-    /// `axis` (non-zero), used to place canonical shapes (torus).
+    /// `axis` (non-zero, any finite length: see [`super::unit`]), used to place canonical
+    /// shapes (torus, cone).
     pub fn frame(origin: DVec3, axis: DVec3) -> Option<Self> {
-        let z = axis.normalize();
-        if !z.is_finite() {
-            return None;
-        }
+        let z = super::unit(axis)?;
         let (x, y) = z.any_orthonormal_pair();
         Transform::new(DAffine3::from_mat3_translation(
             DMat3::from_cols(x, y, z),

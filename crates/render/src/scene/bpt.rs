@@ -5,6 +5,7 @@
 use glam::DVec3;
 
 use super::control_net::{ControlNet, MAX_PATCH_DEGREE, PatchError};
+use super::lexer::text_lines;
 
 /// Most patches accepted in one `.bpt` file (a guard against a corrupt count).
 pub const MAX_BPT_PATCHES: usize = 1 << 20;
@@ -19,9 +20,10 @@ pub struct BptError {
     pub message: String,
 }
 
-/// Non-empty lines with their 1-based numbers (`#` or `//` start a comment).
+/// Non-empty lines with their 1-based numbers (`#` or `//` start a comment); `\n`, `\r\n` and
+/// a lone `\r` end a line.
 fn lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
-    text.lines().enumerate().filter_map(|(i, l)| {
+    text_lines(text).enumerate().filter_map(|(i, l)| {
         let l = l.split("//").next().unwrap_or("");
         let l = l.split('#').next().unwrap_or("").trim();
         (!l.is_empty()).then_some((i + 1, l))

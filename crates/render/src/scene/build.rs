@@ -18,8 +18,9 @@ use super::expr::{Constants, eval_const, expand};
 use super::lexer::end_position;
 use super::model::MAX_SUPERQUADRIC_POWER;
 use super::model::{
-    BoundingVolume, CameraSpec, CheckerTexture, Illumination, ImageTexture, Light, LookAtCamera,
-    Material, Object, ObjectTransform, Rgb, Scene, ShapeKind, StamCamera, Texture, Viewport, World,
+    BoundingVolume, CameraSpec, CheckerTexture, Illumination, ImageTexture, InvalidModel, Light,
+    LookAtCamera, Material, Object, ObjectTransform, Rgb, Scene, ShapeKind, StamCamera, Texture,
+    Viewport, World,
 };
 use super::source::{
     MAX_CONTROL_POINT_BYTES, MAX_SCENE_BYTES, MAX_TEXTURE_BYTES, MAX_TEXTURE_TEXELS, read_bounded,
@@ -906,15 +907,7 @@ fn build_object(
     f.only(&allowed, shape_type.name())?;
     let shape = build_shape(f, shape_type, base)?;
     if let Err(e) = shape.validate() {
-        let key = Key::ALL.iter().copied().find(|k| k.name() == e.key);
-        let span = key.map_or(&f.block.command.span, |k| f.span_of(k));
-        return Err(SceneError::at(
-            span,
-            ErrorKind::InvalidValue {
-                key: e.key.to_owned(),
-                reason: e.reason.to_owned(),
-            },
-        ));
+        return Err(model_error(f, shape_type, &e));
     }
 
     let mut material = Material::default();
@@ -1043,24 +1036,53 @@ fn build_object(
         }
         transform.scale = v;
     }
-    // The tracer places the shape by this transform (and a frame of its own for a torus or
-    // superquadric); check here, where the keys have places, that the result is finite.
-    let transform_span = [Key::Scale, Key::Rotate, Key::Translate]
-        .into_iter()
-        .find_map(|k| f.get(k).map(|field| &field.key_span));
-    let Some(_world_from_object) = transform.world_from_object() else {
-        return Err(invalid(
-            transform_span.unwrap_or(&f.block.command.span),
-            Key::Scale,
-            "the object's transform overflows f64 or is singular",
-        ));
-    };
-    Ok(Object {
+    let object = Object {
         shape,
         material,
         bounding,
         transform,
-    })
+    };
+    // The tracer places the shape by this transform and a frame of its own (torus, cone,
+    // superquadric): `PreparedScene` computes the same `Placement`, so check it here, where
+    // the keys have places.
+    if let Err(e) = object.placement() {
+        if e.key == "Transform" {
+            let transform_span = [Key::Scale, Key::Rotate, Key::Translate]
+                .into_iter()
+                .find_map(|k| f.get(k).map(|field| &field.key_span));
+            return Err(invalid(
+                transform_span.unwrap_or(&f.block.command.span),
+                Key::Scale,
+                "the object's transform overflows f64 or is singular",
+            ));
+        }
+        return Err(model_error(f, shape_type, &e));
+    }
+    Ok(object)
+}
+
+/// A model error at its key. The model calls a polygon's corners `vertices`; here they are
+/// the keys `a b c (d)`, and the one written last completes the degenerate polygon.
+fn model_error(f: &Fields<'_>, shape_type: ShapeType, e: &InvalidModel) -> SceneError {
+    let span = if e.key == "vertices" {
+        shape_type
+            .keys()
+            .iter()
+            .filter_map(|&k| f.get(k).map(|field| &field.key_span))
+            .max_by_key(|span| (span.line, span.col))
+    } else {
+        Key::ALL
+            .iter()
+            .find(|k| k.name() == e.key)
+            .map(|&k| f.span_of(k))
+    };
+    SceneError::at(
+        span.unwrap_or(&f.block.command.span),
+        ErrorKind::InvalidValue {
+            key: e.key.to_owned(),
+            reason: e.reason.to_owned(),
+        },
+    )
 }
 
 fn build_shape(f: &Fields<'_>, shape: ShapeType, base: &Path) -> Result<ShapeKind, SceneError> {

@@ -114,6 +114,42 @@ fn is_line_break(c: char) -> bool {
     c == '\n' || c == '\r'
 }
 
+/// The lines of `text` without their ends, for the line-based formats (`.bpt`, control
+/// points, NFF): each ends at `\n`, `\r\n` or a lone `\r`, as in the scene language (issue 13,
+/// item 13). As `str::lines`, a line end at the very end starts no empty line.
+pub(crate) fn text_lines(text: &str) -> TextLines<'_> {
+    TextLines { rest: text }
+}
+
+/// The iterator of [`text_lines`].
+#[derive(Clone, Debug)]
+pub(crate) struct TextLines<'a> {
+    rest: &'a str,
+}
+
+impl<'a> Iterator for TextLines<'a> {
+    type Item = &'a str;
+
+    fn next(&mut self) -> Option<&'a str> {
+        if self.rest.is_empty() {
+            return None;
+        }
+        let (line, rest) = match self.rest.find(is_line_break) {
+            Some(i) => {
+                let end = if self.rest[i..].starts_with("\r\n") {
+                    i + 2
+                } else {
+                    i + 1
+                };
+                (&self.rest[..i], &self.rest[end..])
+            }
+            None => (self.rest, ""),
+        };
+        self.rest = rest;
+        Some(line)
+    }
+}
+
 /// The place just after `text`, as the lexer counts lines and columns: where a file whose
 /// first `text.len()` bytes are `text` goes wrong (the first byte that is not UTF-8).
 pub(crate) fn end_position(text: &str, file: Arc<Path>) -> Span {

@@ -13,6 +13,7 @@ mod expr_tests;
 mod lexer;
 mod model;
 mod nff;
+mod placement;
 mod print;
 mod source;
 mod syntax;
@@ -35,6 +36,8 @@ pub use error::{ErrorKind, MAX_MESSAGE_CHARS, MAX_QUOTED_CHARS, SceneError, Span
 pub use expr::{Axis, BinOp, Expr, ExprKind, MAX_EQUATION_DEGREE, Spanned};
 pub use model::MAX_SUPERQUADRIC_POWER;
 pub use nff::{MAX_NFF_VERTICES, is_nff, nff_material, parse_nff};
+pub use placement::Placement;
+pub(crate) use placement::cone_axis;
 pub use print::print;
 pub use source::{MAX_CONTROL_POINT_BYTES, MAX_SCENE_BYTES, MAX_TEXTURE_BYTES, MAX_TEXTURE_TEXELS};
 pub use syntax::{

@@ -472,7 +472,8 @@ impl ShapeKind {
 }
 
 fn nonzero(v: DVec3, key: &'static str) -> Result<(), InvalidModel> {
-    if v.length_squared() > 0.0 {
+    // Zero means zero: a tiny direction is normalised by `geometry::unit`, not refused.
+    if v.abs().max_element() > 0.0 {
         Ok(())
     } else {
         Err(InvalidModel::new(key, "must not be the zero vector"))
@@ -723,6 +724,10 @@ impl Scene {
                     return Err(at(InvalidModel::new("texture", "refers to no #texture")));
                 }
                 _ => {}
+            }
+            if shapes {
+                // Last: its "Transform overflows" presumes the finite checks above passed.
+                object.placement().map_err(at)?;
             }
         }
         let cam_err = |reason| SceneInvalid::Camera { reason };

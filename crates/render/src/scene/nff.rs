@@ -16,10 +16,10 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use super::error::{ErrorKind, SceneError, Span};
-use super::lexer::end_position;
+use super::lexer::{TextLines, end_position, text_lines};
 use super::model::{
-    CameraSpec, Illumination, Light, LookAtCamera, Material, Object, Rgb, Scene, ShapeKind,
-    Viewport,
+    CameraSpec, Illumination, InvalidModel, Light, LookAtCamera, Material, Object, Rgb, Scene,
+    ShapeKind, Viewport,
 };
 use super::valid_scene::{SceneSpans, ValidScene};
 
@@ -40,7 +40,7 @@ pub fn is_nff(path: &Path, text: &str) -> bool {
         Some(e) if e.eq_ignore_ascii_case("scene") => return false,
         _ => {}
     }
-    for line in text.lines() {
+    for line in text_lines(text) {
         let line = line.trim_start();
         if line.is_empty() || line.starts_with('#') {
             continue;
@@ -105,7 +105,7 @@ pub fn nff_material(color: Rgb, kd: f64, ks: f64, shine: f64, t: f64, ior: f64) 
 /// ```
 pub fn parse_nff(text: &str, file: &Path) -> Result<ValidScene, SceneError> {
     let mut r = Reader {
-        lines: text.split('\n').enumerate(),
+        lines: text_lines(text).enumerate(),
         file: Arc::from(file),
     };
     let mut scene = Scene::default();
@@ -245,8 +245,9 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<ValidScene, SceneError> {
     spans.validate(scene, &end_position(text, Arc::from(file)))
 }
 
-/// Adds an object after checking its shape, reporting a degenerate one at `span`, and
-/// records `span` for the scene-level checks at the end of the load.
+/// Adds an object after checking its shape and its placement (the cone's frame), reporting a
+/// degenerate one at `span`, and records `span` for the scene-level checks at the end of the
+/// load.
 fn push(
     scene: &mut Scene,
     spans: &mut SceneSpans,
@@ -254,7 +255,8 @@ fn push(
     material: &Material,
     span: Span,
 ) -> Result<(), SceneError> {
-    shape.validate().map_err(|e| {
+    let name = shape.type_name().to_lowercase();
+    let located = |e: InvalidModel| {
         // The model names the scene-language key; NFF has none, so say what it is.
         let reason = if e.reason.starts_with("the ") || e.reason.starts_with("a ") {
             e.reason.to_owned()
@@ -264,12 +266,14 @@ fn push(
         SceneError::at(
             &span,
             ErrorKind::InvalidValue {
-                key: shape.type_name().to_lowercase(),
+                key: name.clone(),
                 reason,
             },
         )
-    })?;
+    };
+    shape.validate().map_err(located)?;
     let mut object = Object::new(shape);
+    object.placement().map_err(located)?;
     object.material = material.clone();
     scene.objects.push(object);
     spans.objects.push(span);
@@ -342,7 +346,7 @@ fn view_line<'a>(
 
 /// The lines of the text, numbered from 1, with comments and blank lines skipped.
 struct Reader<'a> {
-    lines: std::iter::Enumerate<std::str::Split<'a, char>>,
+    lines: std::iter::Enumerate<TextLines<'a>>,
     file: Arc<Path>,
 }
 

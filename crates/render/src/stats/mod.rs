@@ -9,9 +9,11 @@ use poly::{IsolationMethod, RefineMethod, RootStats, STATS_DEGREES};
 use crate::methods::RootMethods;
 
 mod patch;
+mod slowest;
 
 use crate::aggregate::BvhInfo;
 pub use patch::{HIST_BINS, PatchStats};
+pub use slowest::{Escalations, SlowObject, SlowestCell};
 
 /// Counters filled in while tracing. Each worker thread owns one (inside its
 /// [`Workspace`](crate::Workspace)); the totals are summed with [`TraceStats::merge`].
@@ -59,6 +61,9 @@ pub struct TraceStats {
     /// The scene's BVH as built (recorded once per render by [`render`](crate::render); kept,
     /// not summed, by [`TraceStats::merge`]).
     pub bvh: BvhInfo,
+    /// The cell that took longest, with its root-query escalations (kept, not summed, by
+    /// [`TraceStats::merge`]: the slower of the two).
+    pub slowest: Option<SlowestCell>,
 }
 
 /// Counters for one kind of surface.
@@ -111,6 +116,11 @@ impl TraceStats {
         self.bvh_node_visits += o.bvh_node_visits;
         if o.bvh.nodes > 0 {
             self.bvh = o.bvh;
+        }
+        if let Some(b) = o.slowest
+            && self.slowest.is_none_or(|a| b.elapsed > a.elapsed)
+        {
+            self.slowest = Some(b);
         }
     }
 
@@ -376,6 +386,21 @@ impl fmt::Display for StatsReport<'_> {
         )?;
         writeln!(
             f,
+            "  adaptive-precision pieces          {:>12}",
+            r.adaptive_pieces
+        )?;
+        writeln!(
+            f,
+            "    beyond double-double             {:>12}",
+            r.multiprecision_pieces
+        )?;
+        writeln!(
+            f,
+            "  refinements finished adaptively    {:>12}",
+            r.adaptive_refines
+        )?;
+        writeln!(
+            f,
             "  isolation subdivisions             {:>12}",
             r.subdivisions
         )?;
@@ -391,6 +416,9 @@ impl fmt::Display for StatsReport<'_> {
         )?;
         if s.patches.solves > 0 {
             write!(f, "{}", s.patches)?;
+        }
+        if let Some(slowest) = &s.slowest {
+            write!(f, "{slowest}")?;
         }
         let ms = |d: Duration| d.as_secs_f64() * 1e3;
         let t = &self.times;

@@ -13,7 +13,7 @@ use std::ops::Range;
 use glam::DVec3;
 
 use super::{Hit, Polygon, Surface, SurfaceGeometry, SurfaceKind};
-use crate::geometry::{Bounds3, Ray};
+use crate::geometry::{Bounds3, Ray, unit};
 use crate::workspace::Workspace;
 
 /// A polygon with per-vertex normals.
@@ -35,10 +35,7 @@ impl SmoothPolygon {
         let polygon = Polygon::new(vertices)?;
         let normals = normals
             .iter()
-            .map(|n| {
-                let u = n.normalize();
-                u.is_finite().then_some(u)
-            })
+            .map(|&n| unit(n))
             .collect::<Option<Vec<_>>>()?;
         Some(SmoothPolygon {
             polygon,

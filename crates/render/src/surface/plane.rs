@@ -27,14 +27,16 @@ pub struct Plane {
 }
 
 impl Plane {
-    /// The plane through `origin` with normal `normal` (non-zero; normalised here).
+    /// The plane through `origin` with normal `normal` (non-zero and finite, of any length:
+    /// normalised here by [`crate::geometry::unit`]; the zero vector leaves NaN coefficients, a
+    /// plane no ray hits, and [`crate::scene::ShapeKind::validate`] refuses it first).
     pub fn new(origin: DVec3, normal: DVec3) -> Self {
         Self::with_kind(origin, normal, SurfaceKind::Plane)
     }
 
     /// The same, reported under another kind (polygons and triangles use a plane).
     pub(crate) fn with_kind(origin: DVec3, normal: DVec3, kind: SurfaceKind) -> Self {
-        let n = normal.normalize();
+        let n = crate::geometry::unit(normal).unwrap_or(DVec3::NAN);
         // Texture axes: Stam's textured plane is parallel to z = 0 and indexes the texture by
         // x and y (Annexe B `ColTexture`); other planes get any orthonormal pair.
         let (u_axis, v_axis) = if n.x == 0.0 && n.y == 0.0 {

@@ -84,7 +84,13 @@ impl Polygon {
         ws: &mut Workspace,
     ) -> Option<(f64, DVec3)> {
         let range_start = t_range.start;
-        let seg = clip(Some(&self.bounds), ray, t_range.clone(), ws, self.plane.kind())?;
+        let seg = clip(
+            Some(&self.bounds),
+            ray,
+            t_range.clone(),
+            ws,
+            self.plane.kind(),
+        )?;
         let entry = seg.start;
         let t0 = entry + search_start(range_start, entry, seg.end - entry);
         let o = ray.at(t0);

