@@ -52,14 +52,17 @@ impl Escalations {
     }
 }
 
-/// The cell of the image that took longest (wall time on its worker thread).
+/// The cell of the image that took longest: the render times each band of rows (a clock read
+/// per cell would cost a tenth of a fast render), then traces the slowest band's cells again
+/// one by one, and this is the slowest of them, with the time, rays and escalations of that
+/// re-trace.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SlowestCell {
     /// Its top-left pixel `[x, y]`.
     pub pixel: [u32; 2],
     /// Its size in pixels (the scene's preview `Resolution`, 1 × 1 normally).
     pub size: [u32; 2],
-    /// Time spent tracing it.
+    /// Time spent tracing it (in the re-trace).
     pub elapsed: Duration,
     /// Rays it traced (camera, shadow and secondary).
     pub rays: u64,
