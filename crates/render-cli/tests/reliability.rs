@@ -51,6 +51,33 @@ fn temporaries(dir: &Path) -> Vec<String> {
         .collect()
 }
 
+/// Waits until `child` (a render writing into `dir`) has created its temporary, i.e. has
+/// prepared its outputs and started tracing, waits `settle` more, sends `signal` (`"-TERM"`,
+/// `"-INT"`) and waits for the exit: the exit status and the time from the signal to the exit.
+#[cfg(unix)]
+fn signal_once_started(
+    child: &mut std::process::Child,
+    dir: &Path,
+    signal: &str,
+    settle: std::time::Duration,
+) -> (std::process::ExitStatus, std::time::Duration) {
+    use std::time::{Duration, Instant};
+    let start = Instant::now();
+    while temporaries(dir).is_empty() && start.elapsed() < Duration::from_secs(60) {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    assert!(!temporaries(dir).is_empty(), "the render started");
+    std::thread::sleep(settle);
+    let killed = Command::new("kill")
+        .args([signal, &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success(), "kill ran");
+    let stopped = Instant::now();
+    let status = child.wait().unwrap();
+    (status, stopped.elapsed())
+}
+
 /// Caught: `-o copy.scene` and `--depth copy.scene` overwrote the scene, and `-o` and
 /// `--depth` naming one file silently replaced one output by the other (issue 13 item 1).
 #[test]
@@ -218,7 +245,7 @@ fn control_characters_from_the_scene_are_escaped_in_messages() {
 #[cfg(unix)]
 #[test]
 fn a_signal_stops_the_render_and_leaves_no_temporary() {
-    use std::time::{Duration, Instant};
+    use std::time::Duration;
     let dir = setup();
     std::fs::write(dir.path().join("keep.png"), b"old").unwrap();
     // Slow on purpose: 4000² pixels × 64 samples on one thread take minutes.
@@ -237,23 +264,10 @@ fn a_signal_stops_the_render_and_leaves_no_temporary() {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
-    // Wait until the temporary exists: the outputs were prepared and tracing started.
-    let start = Instant::now();
-    while temporaries(dir.path()).is_empty() && start.elapsed() < Duration::from_secs(60) {
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    assert!(!temporaries(dir.path()).is_empty(), "the render started");
-    let killed = Command::new("kill")
-        .args(["-TERM", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(killed.success(), "kill ran");
-    let stopped = Instant::now();
-    let status = child.wait().unwrap();
+    let (status, elapsed) = signal_once_started(&mut child, dir.path(), "-TERM", Duration::ZERO);
     assert!(
-        stopped.elapsed() < Duration::from_secs(30),
-        "stopped promptly: {:?}",
-        stopped.elapsed()
+        elapsed < Duration::from_secs(30),
+        "stopped promptly: {elapsed:?}"
     );
     assert_eq!(
         status.code(),
@@ -275,7 +289,7 @@ fn a_signal_stops_the_render_and_leaves_no_temporary() {
 #[cfg(unix)]
 #[test]
 fn ctrl_c_stops_a_render_of_slow_rays_promptly() {
-    use std::time::{Duration, Instant};
+    use std::time::Duration;
     let dir = tempfile::tempdir().unwrap();
     let scene = SCENE.replace(
         "Type = TORUS\nCenter = (0,0,0)\nAxis = (0,0,1)\nMajorRadius = 2\nMinorRadius = 1\n",
@@ -298,25 +312,13 @@ fn ctrl_c_stops_a_render_of_slow_rays_promptly() {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
-    let start = Instant::now();
-    while temporaries(dir.path()).is_empty() && start.elapsed() < Duration::from_secs(60) {
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    assert!(!temporaries(dir.path()).is_empty(), "the render started");
-    std::thread::sleep(Duration::from_millis(200));
-    let killed = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(killed.success(), "kill ran");
-    let stopped = Instant::now();
-    let status = child.wait().unwrap();
+    let (status, elapsed) =
+        signal_once_started(&mut child, dir.path(), "-INT", Duration::from_millis(200));
     // One cell is one ray here (tens of milliseconds in a debug build); 5 s allows a loaded
     // machine, while finishing the image would take minutes.
     assert!(
-        stopped.elapsed() < Duration::from_secs(5),
-        "stopped promptly: {:?}",
-        stopped.elapsed()
+        elapsed < Duration::from_secs(5),
+        "stopped promptly: {elapsed:?}"
     );
     assert_eq!(
         status.code(),
