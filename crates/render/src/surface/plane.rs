@@ -69,6 +69,12 @@ impl Plane {
     pub fn origin(&self) -> DVec3 {
         self.origin
     }
+
+    /// The plane restricted to the line `o + t·d`: `[c0, c1]` with `F = c0 + c1·t`,
+    /// `c0 = n·(o − origin)`, `c1 = n·d` (lowest coefficient first).
+    pub fn restricted(&self, o: DVec3, d: DVec3) -> [f64; 2] {
+        [self.normal.dot(o - self.origin), self.normal.dot(d)]
+    }
 }
 
 impl ImplicitFn for Plane {
@@ -83,7 +89,7 @@ impl ImplicitFn for Plane {
     /// `n·(o − origin) + (n·d)·t`.
     fn restrict(&self, o: DVec3, d: DVec3, _: &mut RestrictScratch, out: &mut Vec<f64>) {
         out.clear();
-        out.extend_from_slice(&[self.normal.dot(o - self.origin), self.normal.dot(d)]);
+        out.extend_from_slice(&self.restricted(o, d));
     }
 
     fn bounds(&self) -> Option<Bounds3> {

@@ -94,11 +94,7 @@ impl Polygon {
         let entry = seg.start;
         let t0 = entry + search_start(range_start, entry, seg.end - entry);
         let o = ray.at(t0);
-        let plane = self.plane.function();
-        let (c0, c1) = (
-            plane.normal().dot(o - plane.origin()),
-            plane.normal().dot(ray.dir),
-        );
+        let [c0, c1] = self.plane.function().restricted(o, ray.dir);
         match poly::linear_root_in(c0, c1, 0.0, seg.end - t0) {
             Some(Some(s)) => Some((t0 + s, o + ray.dir * s)),
             Some(None) => None,
