@@ -7,6 +7,12 @@
 //! timing is the best of [`ROUNDS`] interleaved passes, so a loaded machine inflates every
 //! row about equally). The report goes to stdout; `paper-notes/isolation.md` keeps a copy.
 //!
+//! The growth-with-degree corpora (Kac, Chebyshev, planted at degree 40, 80, 160) also show
+//! `poly`'s own `Sturm` heuristic, and with `PEERS_FLINT=1` python-flint's certified
+//! `complex_roots` on the same stored polynomials (`benches/flint_roots.py`, run by
+//! `python3` in the same bench run; flint is a reference, never a dependency: without it the
+//! row says why it is missing).
+//!
 //! `PEERS_PROFILE=<corpus>` (`entry`, `eye`, `wilkinson`, `planted`, `quartics`) runs only
 //! `poly` on that corpus, once, and prints its statistics: the load-independent
 //! instruction count comes from running that under
@@ -17,8 +23,12 @@
 
 use std::time::Instant;
 
-use poly::{Poly, RootOptions, RootStats};
+use std::path::Path;
+use std::process::Command;
+
+use poly::{Poly, RefineMethod, RootStats};
 use toolkit_benches::families::{Family, degree_cases, ray_cases};
+use toolkit_benches::methods::Method;
 use toolkit_benches::score::match_roots;
 use toolkit_benches::truth::{Truth, stored_truth};
 
@@ -33,84 +43,19 @@ const X_TOL: f64 = 1e-12;
 /// smaller, so a correct answer is never near this radius).
 const WRONG_REL: f64 = 1e-6;
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Solver {
-    /// `poly`'s default certified method.
-    Poly,
-    Polycool,
-    /// kurbo's `solve_quartic` (degree ≤ 4 only).
-    Kurbo,
-    /// roots' closed forms up to degree 4, its `find_roots_sturm` above.
-    Roots,
-}
+/// `poly`'s default certified method (Bernstein isolation, the default refinement: the
+/// options of `RootOptions::new`).
+const POLY: Method = Method::Bernstein(RefineMethod::NewtonBisection);
 
-impl Solver {
-    fn name(self) -> &'static str {
-        match self {
-            Solver::Poly => "poly (certified)",
-            Solver::Polycool => "polycool 0.4",
-            Solver::Kurbo => "kurbo 0.13",
-            Solver::Roots => "roots 0.0.8",
-        }
-    }
+/// `poly`'s heuristic `f64` Sturm method (uncertified; the growth target compares with it).
+const POLY_STURM: Method = Method::SturmF64(RefineMethod::NewtonBisection);
 
-    /// Every real root in `(lo, hi]`, sorted (what the solver reports there).
-    fn all_roots(
-        self,
-        p: &Poly<f64>,
-        (lo, hi, x_tol): (f64, f64, f64),
-        stats: &mut RootStats,
-    ) -> Vec<f64> {
-        let c = p.coeffs();
-        let mut r = match self {
-            Solver::Poly => {
-                return p
-                    .real_roots_with(lo, hi, &RootOptions::new(x_tol), stats)
-                    .unwrap_or_default();
-            }
-            Solver::Polycool => {
-                if c.len() == 5 {
-                    polycool::Poly::<5>::new([c[0], c[1], c[2], c[3], c[4]])
-                        .roots_between(lo, hi, x_tol)
-                        .to_vec()
-                } else {
-                    polycool::PolyDyn::new(c.iter().copied()).roots_between(lo, hi, x_tol)
-                }
-            }
-            Solver::Kurbo => match c.len() {
-                5 => kurbo::common::solve_quartic(c[0], c[1], c[2], c[3], c[4]).to_vec(),
-                _ => return Vec::new(),
-            },
-            Solver::Roots => {
-                if c.len() == 5 {
-                    roots::find_roots_quartic(c[4], c[3], c[2], c[1], c[0])
-                        .as_ref()
-                        .to_vec()
-                } else {
-                    let n = c.len() - 1;
-                    let monic: Vec<f64> = (0..n).rev().map(|i| c[i] / c[n]).collect();
-                    roots::find_roots_sturm(&monic, &mut 1e-14f64)
-                        .into_iter()
-                        .filter_map(Result::ok)
-                        .collect()
-                }
-            }
-        };
-        r.retain(|&x| x > lo && x <= hi);
-        r.sort_by(f64::total_cmp);
-        r
-    }
-
-    fn smallest_root(
-        self,
-        p: &Poly<f64>,
-        (lo, hi, x_tol): (f64, f64, f64),
-        stats: &mut RootStats,
-    ) -> Option<f64> {
-        match self {
-            Solver::Poly => p.smallest_root_with(lo, hi, &RootOptions::new(x_tol), stats),
-            _ => self.all_roots(p, (lo, hi, x_tol), stats).first().copied(),
-        }
+/// The name of a row.
+fn name(m: Method) -> String {
+    match m {
+        POLY => "poly (certified)".to_owned(),
+        POLY_STURM => "poly (sturm heuristic)".to_owned(),
+        _ => m.name(),
     }
 }
 
@@ -142,17 +87,20 @@ impl Corpus {
 
     /// The wrong answers of `solver` to query `q`: 0 or 1 for a smallest-root query, the
     /// missed and phantom roots for an all-roots query.
-    fn wrong(&self, solver: Solver, q: &Query, stats: &mut RootStats) -> usize {
+    fn wrong(&self, solver: Method, q: &Query, stats: &mut RootStats) -> usize {
         let args = (q.lo, q.hi, self.x_tol);
         if self.smallest {
-            let got = solver.smallest_root(&q.p, args, stats);
+            let got = solver.smallest_root(&q.p, args.0, args.1, args.2, stats);
             usize::from(match (got, q.truth.approx.first()) {
                 (None, None) => false,
                 (Some(x), Some(&t)) => (x - t).abs() > WRONG_REL * t.abs().max(1.0),
                 _ => true,
             })
         } else {
-            let m = match_roots(&q.truth, &solver.all_roots(&q.p, args, stats));
+            let m = match_roots(
+                &q.truth,
+                &solver.all_roots(&q.p, args.0, args.1, args.2, stats),
+            );
             m.missed + m.phantom
         }
     }
@@ -160,13 +108,13 @@ impl Corpus {
 
 /// A row: mean time per query, wrong answers, and `poly`'s statistics.
 struct Row {
-    solver: Solver,
+    solver: Method,
     ns: f64,
     wrong: usize,
     stats: RootStats,
 }
 
-fn run(corpus: &Corpus, solvers: &[Solver]) -> Vec<Row> {
+fn run(corpus: &Corpus, solvers: &[Method]) -> Vec<Row> {
     let mut rows: Vec<Row> = solvers
         .iter()
         .map(|&solver| {
@@ -192,9 +140,14 @@ fn run(corpus: &Corpus, solvers: &[Solver]) -> Vec<Row> {
             for q in &corpus.queries {
                 let args = (q.lo, q.hi, corpus.x_tol);
                 if corpus.smallest {
-                    std::hint::black_box(row.solver.smallest_root(&q.p, args, &mut s));
+                    std::hint::black_box(
+                        row.solver
+                            .smallest_root(&q.p, args.0, args.1, args.2, &mut s),
+                    );
                 } else {
-                    std::hint::black_box(row.solver.all_roots(&q.p, args, &mut s));
+                    std::hint::black_box(
+                        row.solver.all_roots(&q.p, args.0, args.1, args.2, &mut s),
+                    );
                 }
             }
             row.ns = row.ns.min(start.elapsed().as_nanos() as f64 / n);
@@ -203,11 +156,63 @@ fn run(corpus: &Corpus, solvers: &[Solver]) -> Vec<Row> {
     rows
 }
 
-fn report(corpus: &Corpus, solvers: &[Solver]) {
+/// python-flint's certified `complex_roots` on the corpus's stored polynomials: mean time
+/// per query (best of [`ROUNDS`] passes, timed in Python) and the queries whose count of
+/// distinct real roots in `(lo, hi]` differs from the oracle's. `Err` says why there is no
+/// row (no `python3`, no flint).
+fn flint_row(corpus: &Corpus) -> Result<(f64, usize), String> {
+    let mut input = String::new();
+    for q in &corpus.queries {
+        let coeffs: Vec<String> = q.p.coeffs().iter().map(f64::to_string).collect();
+        input += &format!("{} {} {}\n", q.lo, q.hi, coeffs.join(" "));
+    }
+    let file = std::env::temp_dir().join(format!("peers-flint-{}.txt", std::process::id()));
+    std::fs::write(&file, input).map_err(|e| format!("writing {}: {e}", file.display()))?;
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("flint_roots.py");
+    let out = Command::new("python3")
+        .arg(&script)
+        .arg(&file)
+        .arg(ROUNDS.to_string())
+        .output();
+    let _ = std::fs::remove_file(&file);
+    let out = out.map_err(|e| format!("python3: {e}"))?;
+    if !out.status.success() {
+        let err = String::from_utf8_lossy(&out.stderr);
+        return Err(err.lines().last().unwrap_or("failed").to_string());
+    }
+    let text = String::from_utf8_lossy(&out.stdout);
+    let mut lines = text.lines();
+    let ns: f64 = lines
+        .next()
+        .and_then(|l| l.trim().parse().ok())
+        .ok_or("no time in the output")?;
+    let counts: Vec<usize> = lines
+        .next()
+        .unwrap_or("")
+        .split_whitespace()
+        .map(|c| c.parse().map_err(|e| format!("root count {c:?}: {e}")))
+        .collect::<Result<_, String>>()?;
+    if counts.len() != corpus.queries.len() {
+        return Err(format!(
+            "{} root counts for {} queries",
+            counts.len(),
+            corpus.queries.len()
+        ));
+    }
+    let wrong = corpus
+        .queries
+        .iter()
+        .zip(&counts)
+        .filter(|&(q, &n)| q.truth.approx.len() != n)
+        .count();
+    Ok((ns, wrong))
+}
+
+fn report(corpus: &Corpus, solvers: &[Method], flint: bool) {
     let rows = run(corpus, solvers);
     let base = rows
         .iter()
-        .find(|r| r.solver == Solver::Polycool)
+        .find(|r| r.solver == Method::Polycool)
         .map(|r| r.ns);
     println!(
         "\n{} ({} queries, x_tol = {:e})\n",
@@ -221,17 +226,33 @@ fn report(corpus: &Corpus, solvers: &[Solver]) {
     println!("|---|---|---|---|---|");
     for r in &rows {
         let ratio = base.map_or(String::new(), |b| format!("{:.2}", r.ns / b));
-        let st = if r.solver == Solver::Poly {
+        let st = if r.solver == POLY {
             stats_cell(&r.stats)
         } else {
             String::new()
         };
         println!(
             "| {} | {:.2} µs | {ratio} | {} | {st} |",
-            r.solver.name(),
+            name(r.solver),
             r.ns / 1e3,
             r.wrong
         );
+    }
+    if flint {
+        match flint_row(corpus) {
+            Ok((ns, wrong)) => {
+                let ratio = base.map_or(String::new(), |b| format!("{:.2}", ns / b));
+                let poly = rows.iter().find(|r| r.solver == POLY);
+                let vs = poly.map_or(String::new(), |p| {
+                    format!("poly (certified) / flint = {:.2}", p.ns / ns)
+                });
+                println!(
+                    "| python-flint `complex_roots` (all complex roots; wrong = queries with another real-root count) | {:.2} µs | {ratio} | {wrong} | {vs} |",
+                    ns / 1e3
+                );
+            }
+            Err(why) => println!("| python-flint | — | | | not run: {why} |"),
+        }
     }
 }
 
@@ -354,7 +375,7 @@ fn run_poly_only(corpus: &Corpus) -> (usize, RootStats) {
     let wrong = corpus
         .queries
         .iter()
-        .map(|q| corpus.wrong(Solver::Poly, q, &mut stats))
+        .map(|q| corpus.wrong(POLY, q, &mut stats))
         .sum();
     (wrong, stats)
 }
@@ -378,13 +399,13 @@ fn main() {
         return;
     }
     let full = std::env::var_os("PEERS_FULL").is_some();
-    let quartic = [Solver::Poly, Solver::Polycool, Solver::Kurbo, Solver::Roots];
-    let general = [Solver::Poly, Solver::Polycool, Solver::Roots];
+    let quartic = [POLY, Method::Polycool, Method::Kurbo, Method::Roots];
+    let general = [POLY, Method::Polycool, Method::Roots];
     println!("best of {ROUNDS} interleaved passes");
     for name in ["entry", "eye", "wilkinson", "planted", "quartics"] {
         let corpus = target_corpus(name).expect("a named corpus");
         let quartics = corpus.queries.iter().all(|q| q.p.degree() == 4);
-        report(&corpus, if quartics { &quartic } else { &general });
+        report(&corpus, if quartics { &quartic } else { &general }, false);
     }
     // No width cliff: the same polynomials on a tight range and on (−∞, ∞).
     let cheb12 = degree_cases(Family::Chebyshev, 12, 1, 1).remove(0).poly;
@@ -407,16 +428,20 @@ fn main() {
             .collect();
         let title =
             format!("Width: Chebyshev T12 and planted degree 12, all roots on ({lo}, {hi}]");
-        report(&Corpus::new(title, qs, false), &general);
+        report(&Corpus::new(title, qs, false), &general, false);
     }
+    // Growth with degree: the certified path against its own heuristic and against flint.
+    let flint = std::env::var_os("PEERS_FLINT").is_some();
+    let growth = [POLY, POLY_STURM, Method::Polycool, Method::Roots];
     let degrees: &[usize] = if full { &[40, 80, 160] } else { &[40, 80] };
     for &d in degrees {
-        for family in [Family::Kac, Family::Chebyshev] {
-            let samples = if family == Family::Kac { 3 } else { 1 };
+        for family in [Family::Kac, Family::Chebyshev, Family::Planted] {
+            let samples = if family == Family::Chebyshev { 1 } else { 3 };
             let title = format!("{} degree {d}, all roots", family.name());
             report(
                 &Corpus::new(title, queries(degree_cases(family, d, samples, 14)), false),
-                &general,
+                &growth,
+                flint,
             );
         }
     }

@@ -163,6 +163,11 @@ fn plan() -> Vec<(Method, Vec<f64>)> {
     }
     v.push((Method::Exact, EXACT_TOLERANCES.to_vec()));
     v.push((Method::Companion, vec![f64::NAN]));
+    // The peers: polycool takes a tolerance; kurbo's and roots' closed forms have none
+    // (roots' Sturm solver above degree 4 runs to its convergence bound ε).
+    v.push((Method::Polycool, TOLERANCES.to_vec()));
+    v.push((Method::Kurbo, vec![f64::NAN]));
+    v.push((Method::Roots, vec![f64::NAN]));
     v
 }
 
@@ -243,6 +248,7 @@ fn image_section(size: u32, err: &mut impl std::io::Write) -> Result<String> {
             Method::Bernstein(RefineMethod::NewtonBisection),
             Method::Exact,
             Method::Companion,
+            Method::Polycool,
         ] {
             settings.push(("entry".to_owned(), entry(m, renderer_tol)));
         }
@@ -257,6 +263,7 @@ fn image_section(size: u32, err: &mut impl std::io::Write) -> Result<String> {
             Method::SturmF64(RefineMethod::Illinois),
             Method::Bernstein(RefineMethod::Illinois),
             Method::Companion,
+            Method::Polycool,
         ] {
             settings.push((
                 "eye".to_owned(),
@@ -378,6 +385,9 @@ fn main() -> Result<()> {
     for c in &corpora {
         let mut pts = Vec::new();
         for (m, tols) in plan() {
+            if !c.rays.iter().all(|r| m.supports(r.poly.degree())) {
+                continue;
+            }
             for tol in tols {
                 let p = measure(c, m, if tol.is_nan() { 0.0 } else { tol }, budget);
                 let _ = writeln!(
@@ -419,7 +429,9 @@ fn main() -> Result<()> {
          one, or a different root (error > 0.1). *> tol*: answers farther than `max(tol, \
          ε|x|)` from the truth. *fallbacks*: queries `poly` finished in exact arithmetic. \
          Time per query is the mean over repeated passes of the corpus (≥ {} ms per row). \
-         `companion-eig` has no tolerance (eigenvalues to working precision). \
+         `companion-eig` has no tolerance (eigenvalues to working precision), nor have the \
+         closed forms of the peers `kurbo-0.13` (quartics only) and `roots-0.0.8` (its Sturm \
+         solver, above degree 4, runs to ε); `polycool-0.4` takes the tolerance. \
          Plot: [speed-pareto.svg](speed-pareto.svg) (error against ns/query, one line per \
          method through its tolerances).\n",
         args.rays, args.budget_ms

@@ -90,6 +90,9 @@ fn run_cases(cases: &[Case], budget: Duration) -> (Vec<Score>, Option<Score>) {
         }
         let x_tol = STABILITY_X_TOL_REL * c.lo.abs().max(c.hi.abs()).max(1.0);
         for (m, score) in Method::STABILITY.iter().zip(scores.iter_mut()) {
+            if !m.supports(c.poly.degree()) {
+                continue;
+            }
             let mut stats = RootStats::default();
             let retries = COMPANION_RETRIES.load(Ordering::Relaxed);
             let found = m.all_roots(&c.poly, c.lo, c.hi, x_tol, &mut stats);
@@ -114,8 +117,12 @@ fn param_label(family: Family, param: f64) -> String {
     }
 }
 
-/// `"3m 1p"` for count failures, or the max relative error.
+/// `"3m 1p"` for count failures, or the max relative error; "—" where the method took no
+/// case (kurbo above degree 4).
 fn compact_cell(s: &Score) -> String {
+    if s.cases == 0 {
+        return "—".to_owned();
+    }
     let counts = if s.counts_ok() {
         String::new()
     } else {
@@ -130,7 +137,27 @@ fn compact_cell(s: &Score) -> String {
 
 /// The summary cell of one (family, method): first parameter with a count failure and first
 /// with an inaccurate root, and the worst relative error where counts were right.
-fn summary_cell(rows: &[&Row], mi: usize) -> String {
+fn summary_cell(all_rows: &[&Row], mi: usize) -> String {
+    let rows: Vec<&Row> = all_rows
+        .iter()
+        .copied()
+        .filter(|r| r.scores[mi].cases > 0)
+        .collect();
+    let Some(first) = rows.first() else {
+        return "—".to_owned();
+    };
+    // A method that took only some rows (kurbo: degree ≤ 4) says which.
+    let only = if rows.len() < all_rows.len() {
+        let params: Vec<f64> = rows.iter().map(|r| r.param).collect();
+        format!(" [{} only]", ranges(first.family, &params))
+    } else {
+        String::new()
+    };
+    format!("{}{only}", summary_of(&rows, mi))
+}
+
+/// [`summary_cell`] over the rows the method took.
+fn summary_of(rows: &[&Row], mi: usize) -> String {
     let first_count = rows.iter().find(|r| !r.scores[mi].counts_ok());
     let first_inacc = rows
         .iter()
@@ -205,6 +232,9 @@ fn full_rows(rows: &[&Row]) -> Vec<Vec<String>> {
     let mut out = Vec::new();
     for r in rows {
         for (m, s) in Method::STABILITY.iter().zip(&r.scores) {
+            if s.cases == 0 {
+                continue;
+            }
             out.push(vec![
                 param_label(r.family, r.param),
                 m.name(),
@@ -297,7 +327,10 @@ fn markdown(args: &Args, cmd: &str, rows: &[Row], elapsed: Duration) -> String {
         args.rays,
     );
     let _ = writeln!(md, "**Methods.**\n");
-    let ci = Method::STABILITY.len() - 1;
+    let ci = Method::STABILITY
+        .iter()
+        .position(|m| *m == Method::Companion)
+        .expect("the companion baseline is in the suite");
     let _ = writeln!(
         md,
         "Companion solves that needed a shifted retry because nalgebra's Schur iteration \
@@ -319,14 +352,25 @@ fn markdown(args: &Args, cmd: &str, rows: &[Row], elapsed: Duration) -> String {
                 "certified: Descartes/Bernstein isolation with rounding-error bounds (exact fallback when a sign is uncertain), bisection refinement"
             }
             Method::Bernstein(_) if n.ends_with("illinois") => {
-                "certified, the library default: Bernstein isolation, Illinois (regula falsi) refinement"
+                "certified: Bernstein isolation, Illinois (regula falsi) refinement"
             }
-            Method::Bernstein(_) => "certified: Bernstein isolation, safeguarded Newton refinement",
+            Method::Bernstein(_) => {
+                "certified, the library default: Bernstein isolation, safeguarded Newton refinement"
+            }
             Method::Exact => {
                 "exact rational Sturm isolation and exact bisection, rounded to `f64` (certified, slow)"
             }
             Method::Companion => {
                 "peer baseline: real eigenvalues of the balanced companion matrix (nalgebra real Schur), eigenvalues with `|Im λ| ≤ tol·max(1, |λ|)` taken as real, tol ="
+            }
+            Method::Polycool => {
+                "peer: polycool 0.4's `roots_between` with the same tolerance (recursion on the derivative's roots; its docs say a double root without a sign change can be missed)"
+            }
+            Method::Kurbo => {
+                "peer: kurbo 0.13's closed forms (`solve_quadratic`, `solve_cubic`, `solve_quartic`), degrees 1–4 only (— elsewhere), no tolerance"
+            }
+            Method::Roots => {
+                "peer: roots 0.0.8, its closed forms to degree 4 and `find_roots_sturm` (with the tolerance as its convergence bound) above"
             }
         };
         let tail = if *m == Method::Companion {
@@ -365,18 +409,20 @@ fn markdown(args: &Args, cmd: &str, rows: &[Row], elapsed: Duration) -> String {
     // Exact fallbacks of the default certified method.
     let default_mi = Method::STABILITY
         .iter()
-        .position(|m| *m == Method::Bernstein(poly::RefineMethod::Illinois))
+        .position(|m| *m == Method::Bernstein(poly::RefineMethod::NewtonBisection))
         .expect("the default method is in the suite");
     let _ = writeln!(
         md,
         "### When the certified `f64` path needs exact arithmetic\n\n\
          `bernstein+*` never returns a wrong count because, when the rounding-error bound \
          cannot certify a sign, it first restarts the undecided piece with a fresh bound and \
-         non-dyadic splits, and only what `f64` still cannot decide is isolated by exact Sturm \
-         on that piece (an exact factor `x^k` is divided out first): correct, and slow only \
-         there. This happens for multiple roots, clusters closer than the `f64` noise, and at \
-         high degree. *fallbacks* counts these exact pieces and the refinements finished in \
-         exact arithmetic, so it can exceed the number of cases. Parameters at which `{}` \
+         non-dyadic splits, then isolates it in wider arithmetic with rigorous bounds \
+         (double-double, then 256–1024-bit floats; `paper-notes/isolation.md`), and only what \
+         those still cannot decide is isolated by exact Sturm on that piece (an exact factor \
+         `x^k` is divided out first): correct, and slow only there. This happens for \
+         multiple roots and clusters closer than the widest format resolves. *fallbacks* \
+         counts these exact pieces and the refinements finished in exact arithmetic, so it \
+         can exceed the number of cases. Parameters at which `{}` \
          fell back at least once:\n",
         names[default_mi]
     );

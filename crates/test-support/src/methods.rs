@@ -50,6 +50,14 @@ pub enum Method {
     /// Real eigenvalues of the balanced companion matrix (`nalgebra` real Schur form): the
     /// peer baseline.
     Companion,
+    /// polycool 0.4's `roots_between` (its fixed-size cubic and quartic, `PolyDyn` otherwise):
+    /// a peer, uncertified.
+    Polycool,
+    /// kurbo 0.13's closed forms `solve_quadratic`, `solve_cubic`, `solve_quartic`: a peer,
+    /// degrees 1–4 only (see [`Method::supports`]).
+    Kurbo,
+    /// roots 0.0.8: its closed forms to degree 4, `find_roots_sturm` above: a peer.
+    Roots,
 }
 
 /// The refinement methods of `poly`, in display order.
@@ -60,8 +68,8 @@ pub const REFINE_METHODS: [RefineMethod; 3] = [
 ];
 
 impl Method {
-    /// Every method of the stability suite, baseline first.
-    pub const STABILITY: [Method; 7] = [
+    /// Every method of the stability suite, baseline first, the peers last.
+    pub const STABILITY: [Method; 10] = [
         Method::Stam,
         Method::SturmF64(RefineMethod::Illinois),
         Method::Bernstein(RefineMethod::Bisection),
@@ -69,7 +77,16 @@ impl Method {
         Method::Bernstein(RefineMethod::NewtonBisection),
         Method::Exact,
         Method::Companion,
+        Method::Polycool,
+        Method::Kurbo,
+        Method::Roots,
     ];
+
+    /// Whether the method answers polynomials of this degree at all (kurbo has closed forms
+    /// only); the suites show "—" where it does not.
+    pub fn supports(self, degree: usize) -> bool {
+        self != Method::Kurbo || (1..=4).contains(&degree)
+    }
 
     /// Short name for tables and plots.
     pub fn name(self) -> String {
@@ -85,6 +102,9 @@ impl Method {
             Method::Bernstein(r) => format!("bernstein+{}", refine(r)),
             Method::Exact => "exact-sturm".to_owned(),
             Method::Companion => "companion-eig".to_owned(),
+            Method::Polycool => "polycool-0.4".to_owned(),
+            Method::Kurbo => "kurbo-0.13".to_owned(),
+            Method::Roots => "roots-0.0.8".to_owned(),
         }
     }
 
@@ -98,7 +118,11 @@ impl Method {
             Method::Stam => (IsolationMethod::StamSturm, RefineMethod::Bisection),
             Method::SturmF64(r) => (IsolationMethod::Sturm, r),
             Method::Bernstein(r) => (IsolationMethod::Bernstein, r),
-            Method::Exact | Method::Companion => (IsolationMethod::Exact, RefineMethod::Bisection),
+            Method::Exact
+            | Method::Companion
+            | Method::Polycool
+            | Method::Kurbo
+            | Method::Roots => (IsolationMethod::Exact, RefineMethod::Bisection),
         };
         RootOptions {
             isolation,
@@ -121,6 +145,7 @@ impl Method {
         match self {
             Method::Stam => stam_all_roots(p, lo, hi, x_tol),
             Method::Companion => companion_roots(p, lo, hi),
+            Method::Polycool | Method::Kurbo | Method::Roots => peer_roots(self, p, lo, hi, x_tol),
             _ => p
                 .real_roots_with(lo, hi, &self.options(x_tol), stats)
                 .unwrap_or_default(),
@@ -138,6 +163,9 @@ impl Method {
     ) -> Option<f64> {
         match self {
             Method::Companion => companion_roots(p, lo, hi).first().copied(),
+            Method::Polycool | Method::Kurbo | Method::Roots => {
+                peer_roots(self, p, lo, hi, x_tol).first().copied()
+            }
             _ => p.smallest_root_with(lo, hi, &self.options(x_tol), stats),
         }
     }
@@ -163,6 +191,52 @@ fn stam_all_roots(p: &Poly<f64>, lo: f64, hi: f64, x_tol: f64) -> Vec<f64> {
         }
     }
     out
+}
+
+/// A peer's real roots in `(lo, hi]`, increasing, as the peer reports them (no deduplication:
+/// a repeated value is a phantom in the scoring). Polynomials a peer cannot take (degree 0,
+/// non-finite coefficients, kurbo above degree 4) give no roots.
+fn peer_roots(method: Method, p: &Poly<f64>, lo: f64, hi: f64, x_tol: f64) -> Vec<f64> {
+    let c = p.coeffs();
+    if p.degree() == 0 || !p.is_finite() || !method.supports(p.degree()) {
+        return Vec::new();
+    }
+    let mut r: Vec<f64> = match (method, c.len()) {
+        (Method::Polycool, 4) => polycool::Poly::<4>::new([c[0], c[1], c[2], c[3]])
+            .roots_between(lo, hi, x_tol)
+            .to_vec(),
+        (Method::Polycool, 5) => polycool::Poly::<5>::new([c[0], c[1], c[2], c[3], c[4]])
+            .roots_between(lo, hi, x_tol)
+            .to_vec(),
+        (Method::Polycool, _) => {
+            polycool::PolyDyn::new(c.iter().copied()).roots_between(lo, hi, x_tol)
+        }
+        (Method::Kurbo, 2) => vec![-c[0] / c[1]],
+        (Method::Kurbo, 3) => kurbo::common::solve_quadratic(c[0], c[1], c[2]).to_vec(),
+        (Method::Kurbo, 4) => kurbo::common::solve_cubic(c[0], c[1], c[2], c[3]).to_vec(),
+        (Method::Kurbo, 5) => kurbo::common::solve_quartic(c[0], c[1], c[2], c[3], c[4]).to_vec(),
+        (Method::Roots, 2) => roots::find_roots_linear(c[1], c[0]).as_ref().to_vec(),
+        (Method::Roots, 3) => roots::find_roots_quadratic(c[2], c[1], c[0])
+            .as_ref()
+            .to_vec(),
+        (Method::Roots, 4) => roots::find_roots_cubic(c[3], c[2], c[1], c[0])
+            .as_ref()
+            .to_vec(),
+        (Method::Roots, 5) => roots::find_roots_quartic(c[4], c[3], c[2], c[1], c[0])
+            .as_ref()
+            .to_vec(),
+        (Method::Roots, n) => {
+            let monic: Vec<f64> = (0..n - 1).rev().map(|i| c[i] / c[n - 1]).collect();
+            roots::find_roots_sturm(&monic, &mut x_tol.max(f64::EPSILON))
+                .into_iter()
+                .filter_map(Result::ok)
+                .collect()
+        }
+        _ => Vec::new(),
+    };
+    r.retain(|&x| x > lo && x <= hi);
+    r.sort_by(f64::total_cmp);
+    r
 }
 
 /// The real eigenvalues in `(lo, hi]` of the balanced companion matrix of `p`, increasing
