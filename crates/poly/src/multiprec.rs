@@ -95,11 +95,16 @@ trait Arith {
     fn add_f(&self, x: &Self::T, y: f64) -> Self::T;
     fn mul(&self, x: &Self::T, y: &Self::T) -> Self::T;
     fn mul_f(&self, x: &Self::T, y: f64) -> Self::T;
-    /// The sign of the exact value of `x` when `|x|` exceeds `γ(k)·scale + tiny` (the
-    /// program's bound; `scale ≥ 0` finite, computed rounded up), else 0.
-    fn sign_beyond(&self, x: &Self::T, k: usize, scale: f64, tiny: f64) -> i8;
+    /// The sign of the exact value of `x` when `|x|` exceeds `γ(k)·s₀·s₁ + tiny` (the
+    /// program's bound; `scale = (s₀, s₁)`, both `≥ 0`, finite and computed rounded up),
+    /// else 0. The scale comes as two factors because at high degree their product can
+    /// exceed `f64`'s range (`C(160, 80)·Σ|cᵢ||x|ⁱ` at `|x| = 44`) where the wide format's
+    /// cannot.
+    fn sign_beyond(&self, x: &Self::T, k: usize, scale: (f64, f64), tiny: f64) -> i8;
     /// The absolute underflow error of one operation (0 without underflow).
     fn underflow(&self) -> f64;
+    /// Whether values and bounds share `f64`'s exponent range (they overflow with it).
+    fn has_f64_range(&self) -> bool;
 }
 
 struct DdArith;
@@ -124,8 +129,8 @@ impl Arith for DdArith {
     fn mul_f(&self, x: &Dd, y: f64) -> Dd {
         x.mul_f(y)
     }
-    fn sign_beyond(&self, x: &Dd, k: usize, scale: f64, tiny: f64) -> i8 {
-        let bound = gamma_u(k, DD_UNIT) * scale * (1.0 + 4.0 * f64::EPSILON) + tiny;
+    fn sign_beyond(&self, x: &Dd, k: usize, (s0, s1): (f64, f64), tiny: f64) -> i8 {
+        let bound = gamma_u(k, DD_UNIT) * s0 * s1 * (1.0 + 8.0 * f64::EPSILON) + tiny;
         if bound.is_finite() {
             x.sign_beyond(bound)
         } else {
@@ -134,6 +139,9 @@ impl Arith for DdArith {
     }
     fn underflow(&self) -> f64 {
         DD_UNDERFLOW
+    }
+    fn has_f64_range(&self) -> bool {
+        true
     }
 }
 
@@ -145,6 +153,10 @@ struct BigArith {
 /// Precision that holds any sum of two `f64` numbers exactly: their exponents differ by at
 /// most `2098`, plus 53 bits of mantissa and a carry.
 const EXACT_PAIR_BITS: usize = 2176;
+
+/// Precision that holds any product of two `f64` numbers exactly (2 × 53 bits, in whole
+/// 64-bit words).
+const EXACT_PRODUCT_BITS: usize = 128;
 
 impl BigArith {
     /// The unit roundoff: `astro_float` rounds the exact result to `bits` bits (rounded up to
@@ -176,7 +188,7 @@ impl Arith for BigArith {
     fn mul_f(&self, x: &BigFloat, y: f64) -> BigFloat {
         x.mul(&BigFloat::from_f64(y, 64), self.bits, RM)
     }
-    fn sign_beyond(&self, x: &BigFloat, k: usize, scale: f64, _tiny: f64) -> i8 {
+    fn sign_beyond(&self, x: &BigFloat, k: usize, (s0, s1): (f64, f64), _tiny: f64) -> i8 {
         if x.is_nan() || x.is_inf() {
             return 0;
         }
@@ -186,8 +198,14 @@ impl Arith for BigArith {
         if (k as f64) * u >= 0.5 {
             return 0;
         }
+        // s₀ times the rounded-up `s₁·2k`: a product of two 53-bit mantissas, exact at
+        // `EXACT_PRODUCT_BITS` and free of `f64`'s exponent range.
+        let s1k = s1 * (2.0 * k as f64) * (1.0 + 4.0 * f64::EPSILON);
+        if !s1k.is_finite() {
+            return 0;
+        }
         let mut bound =
-            BigFloat::from_f64(scale * (2.0 * k as f64) * (1.0 + 4.0 * f64::EPSILON), 64);
+            BigFloat::from_f64(s0, 64).mul(&BigFloat::from_f64(s1k, 64), EXACT_PRODUCT_BITS, RM);
         if let Some(e) = bound.exponent() {
             bound.set_exponent(e - (self.bits as i32 - 1));
         } else if !bound.is_zero() {
@@ -205,6 +223,9 @@ impl Arith for BigArith {
     }
     fn underflow(&self) -> f64 {
         0.0
+    }
+    fn has_f64_range(&self) -> bool {
+        false
     }
 }
 
@@ -224,7 +245,7 @@ fn horner_sign<A: Arith>(ar: &A, c: &[f64], x: f64) -> i8 {
     }
     // Underflow errors are amplified by at most |x| per later step: Σ|x|ⁱ per operation.
     let tiny = 2.0 * ar.underflow() * z;
-    ar.sign_beyond(&v, 2 * n, s, tiny)
+    ar.sign_beyond(&v, 2 * n, (s, 1.0), tiny)
 }
 
 /// [`point_sign`] from double-double up, as the sign function of [`DdBernstein`].
@@ -256,6 +277,14 @@ pub(crate) fn point_sign(c: &[f64], x: f64, from: Tier) -> (i8, Tier) {
 
 // ---------------------------------------------------------------------------------------
 // Bernstein coefficients of one node.
+
+/// `C(n, ⌊n/2⌋)`, the largest binomial coefficient of degree `n`, rounded up (infinite from
+/// `n ≈ 1030`).
+fn central_binomial(n: usize) -> f64 {
+    (1..=n / 2).fold(1.0f64, |b, i| {
+        b * (n - i + 1) as f64 / i as f64 * (1.0 + 2.0 * f64::EPSILON)
+    })
+}
 
 /// What Descartes' rule says about a node at one tier.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -301,7 +330,10 @@ fn classify<A: Arith>(
     let w = ar.exact_pair(wh, wl);
     let r = a.abs().max(other.abs());
     let (mag, zr) = abs_weights(c, r);
-    if !mag.is_finite() {
+    // Every shifted and Bernstein value is at most `C(n, i)·mag` in magnitude: where that
+    // leaves `f64`'s range, a tier with that range cannot classify the node at all (its
+    // bounds would be infinite and the node split forever), so it goes up a tier.
+    if !mag.is_finite() || (ar.has_f64_range() && !(mag * central_binomial(n)).is_finite()) {
         return Class::Hopeless;
     }
     q.clear();
@@ -340,7 +372,7 @@ fn classify<A: Arith>(
     for (i, bi) in b.iter().enumerate().take(n).skip(1) {
         // C(n, i) from C(n, i − 1), rounded up (exact while it fits 53 bits).
         binom = (binom * (n - i + 1) as f64 / i as f64) * (1.0 + 2.0 * f64::EPSILON);
-        let s = ar.sign_beyond(bi, k, mag * binom, tiny);
+        let s = ar.sign_beyond(bi, k, (mag, binom), tiny);
         if s == 0 {
             undecided += 1;
             continue;
@@ -864,6 +896,35 @@ mod tests {
             (stats.exact_fallbacks, stats.refine_fallbacks),
             (0, 0),
             "no exact sequence: {stats:?}"
+        );
+    }
+
+    /// Regression (issue 11, degree growth): `x^160 − 2^872`, roots `±2^(109/20) ≈ ±43.71`.
+    /// There the bound `C(160, i)·Σ|cᵢ||x|ⁱ` exceeds `f64`'s range while every value is
+    /// finite: the double-double tier classified nodes as "split" forever (4 096 nodes) and
+    /// the piece went to exact Sturm (6.8 s in release; a Kac polynomial of degree 160 took
+    /// a minute). Such nodes now go up to the wide tiers, whose bounds have no such limit.
+    #[test]
+    fn degree_160_roots_where_the_f64_bound_overflows_stay_off_the_exact_path() {
+        let mut c = vec![0.0; 161];
+        c[0] = -(2f64.powi(872));
+        c[160] = 1.0;
+        let p = Poly::new(c);
+        let mut stats = RootStats::default();
+        let roots = p
+            .real_roots_with(-64.0, 64.0, &RootOptions::new(1e-12), &mut stats)
+            .unwrap();
+        // 2^(109/20) to 30 digits (mpmath): 43.7132882161406566032393579293.
+        let r = 43.713_288_216_140_66;
+        assert_eq!(roots.len(), 2, "two real roots: {roots:?}");
+        assert!(
+            (roots[0] + r).abs() <= 1e-12 && (roots[1] - r).abs() <= 1e-12,
+            "{roots:?}"
+        );
+        assert_eq!(stats.exact_fallbacks, 0, "no exact sequence: {stats:?}");
+        assert!(
+            stats.multiprecision_pieces > 0,
+            "the wide tiers decided: {stats:?}"
         );
     }
 
