@@ -29,7 +29,7 @@ use smallvec::SmallVec;
 use crate::bernstein::Bracket;
 use crate::dd_bernstein::{DdBernstein, DdOutcome};
 use crate::double_double::{DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, two_sum};
-use crate::eval_bound::{abs_weights, certified_sign};
+use crate::eval_bound::{abs_weights, certified_sign, gamma_ratio_upper};
 use crate::scalar::rat_from_f64;
 use crate::stats::RootStats;
 use crate::univariate::Poly;
@@ -95,12 +95,12 @@ trait Arith {
     fn add_f(&self, x: &Self::T, y: f64) -> Self::T;
     fn mul(&self, x: &Self::T, y: &Self::T) -> Self::T;
     fn mul_f(&self, x: &Self::T, y: f64) -> Self::T;
-    /// The sign of the exact value of `x` when `|x|` exceeds `γ(k)·s₀·s₁ + tiny` (the
-    /// program's bound; `scale = (s₀, s₁)`, both `≥ 0`, finite and computed rounded up),
-    /// else 0. The scale comes as two factors because at high degree their product can
-    /// exceed `f64`'s range (`C(160, 80)·Σ|cᵢ||x|ⁱ` at `|x| = 44`) where the wide format's
-    /// cannot.
-    fn sign_beyond(&self, x: &Self::T, k: usize, scale: (f64, f64), tiny: f64) -> i8;
+    /// The sign of the exact value of `x` when `|x|` exceeds `γ(k)·s₀·s₁·2^e + tiny` (the
+    /// program's bound; `scale = (s₀, s₁, e)`, `s₀, s₁ ≥ 0` finite and computed rounded up),
+    /// else 0. The scale comes in factors because at high degree it can exceed `f64`'s
+    /// range (`C(160, 80)·Σ|cᵢ||x|ⁱ` at `|x| = 44`; `Σ|cᵢ||x|ⁱ` itself at `|x| = 256`)
+    /// where the wide format's cannot.
+    fn sign_beyond(&self, x: &Self::T, k: usize, scale: (f64, f64, i32), tiny: f64) -> i8;
     /// The absolute underflow error of one operation (0 without underflow).
     fn underflow(&self) -> f64;
     /// Whether values and bounds share `f64`'s exponent range (they overflow with it).
@@ -129,7 +129,10 @@ impl Arith for DdArith {
     fn mul_f(&self, x: &Dd, y: f64) -> Dd {
         x.mul_f(y)
     }
-    fn sign_beyond(&self, x: &Dd, k: usize, (s0, s1): (f64, f64), tiny: f64) -> i8 {
+    fn sign_beyond(&self, x: &Dd, k: usize, (s0, s1, e): (f64, f64, i32), tiny: f64) -> i8 {
+        if e != 0 {
+            return 0;
+        }
         let bound = gamma_u(k, DD_UNIT) * s0 * s1 * (1.0 + 8.0 * f64::EPSILON) + tiny;
         if bound.is_finite() {
             x.sign_beyond(bound)
@@ -188,7 +191,7 @@ impl Arith for BigArith {
     fn mul_f(&self, x: &BigFloat, y: f64) -> BigFloat {
         x.mul(&BigFloat::from_f64(y, 64), self.bits, RM)
     }
-    fn sign_beyond(&self, x: &BigFloat, k: usize, (s0, s1): (f64, f64), _tiny: f64) -> i8 {
+    fn sign_beyond(&self, x: &BigFloat, k: usize, (s0, s1, e2): (f64, f64, i32), _tiny: f64) -> i8 {
         if x.is_nan() || x.is_inf() {
             return 0;
         }
@@ -207,7 +210,7 @@ impl Arith for BigArith {
         let mut bound =
             BigFloat::from_f64(s0, 64).mul(&BigFloat::from_f64(s1k, 64), EXACT_PRODUCT_BITS, RM);
         if let Some(e) = bound.exponent() {
-            bound.set_exponent(e - (self.bits as i32 - 1));
+            bound.set_exponent(e - (self.bits as i32 - 1) + e2);
         } else if !bound.is_zero() {
             return 0;
         }
@@ -239,13 +242,16 @@ fn horner_sign<A: Arith>(ar: &A, c: &[f64], x: f64) -> i8 {
     for &ci in c[..n].iter().rev() {
         v = ar.add_f(&ar.mul_f(&v, x), ci);
     }
-    let (s, z) = abs_weights(c, x.abs());
-    if !s.is_finite() {
+    let Some((s, e, z)) = weights_at(ar, c, x.abs()) else {
         return 0;
-    }
+    };
     // Underflow errors are amplified by at most |x| per later step: Σ|x|ⁱ per operation.
-    let tiny = 2.0 * ar.underflow() * z;
-    ar.sign_beyond(&v, 2 * n, (s, 1.0), tiny)
+    let tiny = if e == 0 {
+        2.0 * ar.underflow() * z
+    } else {
+        0.0
+    };
+    ar.sign_beyond(&v, 2 * n, (s, 1.0, e), tiny)
 }
 
 /// [`point_sign`] from double-double up, as the sign function of [`DdBernstein`].
@@ -277,6 +283,52 @@ pub(crate) fn point_sign(c: &[f64], x: f64, from: Tier) -> (i8, Tier) {
 
 // ---------------------------------------------------------------------------------------
 // Bernstein coefficients of one node.
+
+/// The scale `Σ|cᵢ|·rⁱ ≤ m·2^e` of a tier's bounds at radius `r`, as `(m, e, Σ rⁱ)`: `e = 0`
+/// and the sums of [`abs_weights`] where they fit `f64`; else, for a tier without `f64`'s
+/// exponent range, [`scaled_abs_weight`] (and no `Σ rⁱ`: such tiers have no underflow).
+/// `None` when the tier cannot bound `p` at `r`.
+fn weights_at<A: Arith>(ar: &A, c: &[f64], r: f64) -> Option<(f64, i32, f64)> {
+    let (m, z) = abs_weights(c, r);
+    if m.is_finite() {
+        return Some((m, 0, z));
+    }
+    if ar.has_f64_range() {
+        return None;
+    }
+    let (m, e) = scaled_abs_weight(c, r);
+    m.is_finite().then_some((m, e, 0.0))
+}
+
+/// Where a scaled Horner sum is renormalised: `2^RENORM_BITS` leaves room for one more
+/// multiplication by any `r < 2^400`.
+const RENORM_BITS: i32 = 600;
+
+/// `Σ|cᵢ|·rⁱ ≤ m·2^e`, rounded up, for `r` whose powers leave `f64`'s range: Horner's rule
+/// on non-negative numbers, the sum multiplied by `2^-RENORM_BITS` (exactly) whenever it
+/// passes `2^RENORM_BITS`, and each later coefficient by `2^-e` — exact while the result is
+/// a normal number; below that the smallest normal number is added instead, which keeps an
+/// upper bound. `m` is infinite when `r` is too large even so.
+fn scaled_abs_weight(c: &[f64], r: f64) -> (f64, i32) {
+    let r = r * (1.0 + 2.0 * f64::EPSILON);
+    let renorm = 2f64.powi(-RENORM_BITS);
+    let (mut s, mut e) = (0.0f64, 0i32);
+    for &ci in c.iter().rev() {
+        s *= r;
+        while s > 1.0 / renorm {
+            s *= renorm;
+            e += RENORM_BITS;
+        }
+        let scaled = ci.abs() * 2f64.powi(-e);
+        s += if ci != 0.0 && scaled < f64::MIN_POSITIVE {
+            f64::MIN_POSITIVE
+        } else {
+            scaled
+        };
+    }
+    let inflate = 1.0 + 2.0 * gamma_ratio_upper(2 * c.len() + 2);
+    (s * inflate, e)
+}
 
 /// `C(n, ⌊n/2⌋)`, the largest binomial coefficient of degree `n`, rounded up (infinite from
 /// `n ≈ 1030`).
@@ -329,11 +381,13 @@ fn classify<A: Arith>(
     let (wh, wl) = two_sum(other, -a);
     let w = ar.exact_pair(wh, wl);
     let r = a.abs().max(other.abs());
-    let (mag, zr) = abs_weights(c, r);
+    let Some((mag, mag_exp, zr)) = weights_at(ar, c, r) else {
+        return Class::Hopeless;
+    };
     // Every shifted and Bernstein value is at most `C(n, i)·mag` in magnitude: where that
     // leaves `f64`'s range, a tier with that range cannot classify the node at all (its
     // bounds would be infinite and the node split forever), so it goes up a tier.
-    if !mag.is_finite() || (ar.has_f64_range() && !(mag * central_binomial(n)).is_finite()) {
+    if ar.has_f64_range() && !(mag * central_binomial(n)).is_finite() {
         return Class::Hopeless;
     }
     q.clear();
@@ -364,7 +418,11 @@ fn classify<A: Arith>(
     // Underflow: each operation may add `η`; a later Horner step multiplies such an error by
     // at most |a| + |w| = r, the basis change by at most C(n, i) ≤ 2ⁿ; at most (n + 1)²
     // operations feed each output.
-    let tiny = ar.underflow() * zr * 2f64.powi(n as i32) * ((n + 1) * (n + 1)) as f64;
+    let tiny = if mag_exp == 0 {
+        ar.underflow() * zr * 2f64.powi(n as i32) * ((n + 1) * (n + 1)) as f64
+    } else {
+        0.0
+    };
     let mut binom = 1.0f64;
     let mut prev = s_a;
     let mut changes = 0u32;
@@ -372,7 +430,7 @@ fn classify<A: Arith>(
     for (i, bi) in b.iter().enumerate().take(n).skip(1) {
         // C(n, i) from C(n, i − 1), rounded up (exact while it fits 53 bits).
         binom = (binom * (n - i + 1) as f64 / i as f64) * (1.0 + 2.0 * f64::EPSILON);
-        let s = ar.sign_beyond(bi, k, (mag, binom), tiny);
+        let s = ar.sign_beyond(bi, k, (mag, binom, mag_exp), tiny);
         if s == 0 {
             undecided += 1;
             continue;
@@ -925,6 +983,56 @@ mod tests {
         assert!(
             stats.multiprecision_pieces > 0,
             "the wide tiers decided: {stats:?}"
+        );
+    }
+
+    /// Regression (issue 11, degree growth): the same polynomial on `(−256, 256]`, where
+    /// `p(±256) ≈ 2^1280` itself leaves `f64`'s range. No tier could sign the ends (their
+    /// bound `Σ|cᵢ||x|ⁱ` was infinite in `f64`), so the whole range went to exact Sturm
+    /// (planted roots of degree 160 on such a range: 9–19 s). The wide tiers now take that
+    /// bound with an exponent of its own.
+    #[test]
+    fn degree_160_range_whose_end_values_overflow_stays_off_the_exact_path() {
+        let mut c = vec![0.0; 161];
+        c[0] = -(2f64.powi(872));
+        c[160] = 1.0;
+        let p = Poly::new(c);
+        let mut stats = RootStats::default();
+        let roots = p
+            .real_roots_with(-256.0, 256.0, &RootOptions::new(1e-12), &mut stats)
+            .unwrap();
+        let r = 43.713_288_216_140_66;
+        assert_eq!(roots.len(), 2, "two real roots: {roots:?}");
+        assert!(
+            (roots[0] + r).abs() <= 1e-12 && (roots[1] - r).abs() <= 1e-12,
+            "{roots:?}"
+        );
+        assert_eq!(stats.exact_fallbacks, 0, "no exact sequence: {stats:?}");
+    }
+
+    /// The scaled weight bounds the sum it stands for: against exact rationals where the sum
+    /// still fits, and by its exponent where it does not.
+    #[test]
+    fn scaled_abs_weight_is_an_upper_bound() {
+        let c: Vec<f64> = (0..=160)
+            .map(|i| if i % 3 == 0 { -1.5 } else { 0.25 * i as f64 })
+            .collect();
+        for r in [0.5, 3.0, 40.0] {
+            let (m, e) = scaled_abs_weight(&c, r);
+            let exact = c.iter().rev().fold(Rat::zero(), |acc, ci| {
+                acc * rat_from_f64(r).unwrap() + rat_from_f64(ci.abs()).unwrap()
+            });
+            let bound = rat_from_f64(m).unwrap() * Rat::from_integer(2.into()).pow(e);
+            assert!(bound >= exact, "r = {r}: {m}·2^{e}");
+            assert!(
+                bound <= exact * Rat::new(101.into(), 100.into()),
+                "and tight at r = {r}"
+            );
+        }
+        let (m, e) = scaled_abs_weight(&c, 256.0);
+        assert!(
+            m.is_finite() && e >= 1200,
+            "2^1280 leaves f64's range: {m}·2^{e}"
         );
     }
 
