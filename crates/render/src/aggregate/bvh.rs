@@ -33,6 +33,15 @@ pub const MAX_LEAF_ITEMS: usize = 4;
 /// it holds, so the fixed traversal stack of this many entries never overflows.
 pub const MAX_DEPTH: usize = 64;
 
+/// Hierarchies over at most this many items are a flat list: one leaf holding the items in
+/// index order, whose box is not tested. Every user's items test their own box first (an
+/// implicit surface clips the ray to its bounding volume, a polygon to its padded box, a
+/// sub-patch to its hull's box), so on such a list the root's slab test only repeats the
+/// items' own, and the traversal loop around it cost more than a loop over the items (issue 10:
+/// the Whitted torus's one-object BVH took 35 M of its 858 M instructions). Equal to
+/// [`MAX_LEAF_ITEMS`]: the SAH keeps most sets this small in one leaf anyway.
+pub const FLAT_MAX_ITEMS: usize = MAX_LEAF_ITEMS;
+
 /// Nodes with more items than this build their two halves in parallel: below it, the
 /// fork-join overhead of rayon exceeds the work.
 const PARALLEL_MIN_ITEMS: usize = 4096;
@@ -119,10 +128,23 @@ impl Bvh {
         if items.is_empty() {
             return bvh;
         }
-        // A binary tree with leaves of at least one item has fewer than 2n nodes.
-        bvh.nodes.reserve(2 * items.len());
-        let depth = build(&mut items, 0, 1, &mut bvh.nodes);
-        bvh.nodes.shrink_to_fit();
+        let depth = if items.len() <= FLAT_MAX_ITEMS {
+            // The flat list: one leaf, items in index order (see `traverse`).
+            let bounds = items.iter().fold(EMPTY, |b, it| b.union(&it.bounds));
+            bvh.nodes.push(Node {
+                bounds,
+                offset: 0,
+                count: items.len() as u32,
+                axis: 0,
+            });
+            1
+        } else {
+            // A binary tree with leaves of at least one item has fewer than 2n nodes.
+            bvh.nodes.reserve(2 * items.len());
+            let depth = build(&mut items, 0, 1, &mut bvh.nodes);
+            bvh.nodes.shrink_to_fit();
+            depth
+        };
         bvh.order = items.iter().map(|it| it.index).collect();
         bvh.info = BvhInfo {
             items: boxes.len(),
@@ -144,9 +166,18 @@ impl Bvh {
     }
 
     /// Calls `visit(item, t_max)` for the items of every leaf whose box the ray crosses before
-    /// the nearest hit so far, near children first. `visit` returns the new `t_max` (the
-    /// nearest hit so far, pruning farther nodes) or `None` to stop. Counts the nodes visited
-    /// in `visits`. Allocates nothing.
+    /// the nearest hit so far, near children first (by the sign of the ray direction along the
+    /// node's split axis). `visit` returns the new `t_max` (the nearest hit so far, pruning
+    /// farther nodes) or `None` to stop. A flat list (at most [`FLAT_MAX_ITEMS`] items) calls
+    /// `visit` for every item, in index order, without a box test: `visit` must test the
+    /// item's own box, as every user does. Counts the boxes tested in `visits`. Allocates
+    /// nothing.
+    ///
+    /// Both children of an inner node are tested there, and only those the ray crosses before
+    /// `t_max` are pushed; a pushed node's box is tested again when it is popped only if `t_max`
+    /// fell since it was pushed (a shadow ray's never falls). So the leaves visited, and their
+    /// order, are those of a traversal that tests each node when it pops it; missed children
+    /// are never pushed, popped or fetched again.
     pub fn traverse(
         &self,
         ray: &Ray,
@@ -154,32 +185,61 @@ impl Bvh {
         visits: &mut u64,
         mut visit: impl FnMut(u32, f64) -> Option<f64>,
     ) {
-        if self.nodes.is_empty() {
+        let Some(root) = self.nodes.first() else {
+            return;
+        };
+        let mut t_max = range.end;
+        if self.nodes.len() == 1 {
+            // One leaf: a flat list, or a single item.
+            let first = root.offset as usize;
+            for &item in &self.order[first..first + root.count as usize] {
+                match visit(item, t_max) {
+                    Some(t) => t_max = t,
+                    None => return,
+                }
+            }
             return;
         }
         let slab_ray = SlabRay::new(ray);
         let dir_neg = [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0];
-        let mut t_max = range.end;
+        // Whether the ray enters `node` before the nearest hit so far (the pruning test).
+        let crosses = |node: &Node, t_max: f64| -> bool {
+            node.bounds
+                .slab(&slab_ray, range.start, range.end)
+                .is_some_and(|(near, far)| {
+                    near <= t_max + PRUNE_SLACK_REL * (near.abs() + (far - near))
+                })
+        };
+        *visits += 1;
+        if !crosses(root, t_max) {
+            return;
+        }
         let mut stack = [0u32; MAX_DEPTH];
         let mut top = 1;
+        // Entries below `stale` were pushed before `t_max` last fell: retested when popped.
+        let mut stale = 0;
         while top > 0 {
             top -= 1;
             let index = stack[top] as usize;
             let node = &self.nodes[index];
-            *visits += 1;
-            let Some((near, far)) = node.bounds.slab(&slab_ray, range.start, range.end) else {
-                continue;
-            };
-            if near > t_max + PRUNE_SLACK_REL * (near.abs() + (far - near)) {
-                continue;
+            if top < stale {
+                stale = top;
+                *visits += 1;
+                if !crosses(node, t_max) {
+                    continue;
+                }
             }
             if node.count > 0 {
                 let first = node.offset as usize;
+                let before = t_max;
                 for &item in &self.order[first..first + node.count as usize] {
                     match visit(item, t_max) {
                         Some(t) => t_max = t,
                         None => return,
                     }
+                }
+                if t_max != before {
+                    stale = top;
                 }
             } else {
                 // Push the far child first so the near one is visited first. The depth limit
@@ -190,9 +250,13 @@ impl Bvh {
                 } else {
                     (first, second)
                 };
-                stack[top] = far_child;
-                stack[top + 1] = near_child;
-                top += 2;
+                *visits += 2;
+                for child in [far_child, near_child] {
+                    if crosses(&self.nodes[child as usize], t_max) {
+                        stack[top] = child;
+                        top += 1;
+                    }
+                }
             }
         }
     }
@@ -484,6 +548,146 @@ mod tests {
         let mut visits = 0;
         let hit = bvh.nearest(&ray, 0.0..f64::INFINITY, &mut visits, |i| Some((4.0, i)));
         assert_eq!(hit.map(|h| h.0), Some(0), "the tie goes to item 0");
+    }
+
+    /// The traversal before children were tested at their parent (issue 12, third pass): pop a
+    /// node, test its box, prune, and push both children of an inner node. The leaves it visits
+    /// and their order are what [`Bvh::traverse`] must reproduce.
+    fn pop_then_test(
+        bvh: &Bvh,
+        ray: &Ray,
+        range: Range<f64>,
+        mut visit: impl FnMut(u32, f64) -> Option<f64>,
+    ) {
+        let slab_ray = SlabRay::new(ray);
+        let mut t_max = range.end;
+        let mut stack = vec![0u32];
+        while let Some(index) = stack.pop() {
+            let node = &bvh.nodes[index as usize];
+            let Some((near, far)) = node.bounds.slab(&slab_ray, range.start, range.end) else {
+                continue;
+            };
+            if near > t_max + PRUNE_SLACK_REL * (near.abs() + (far - near)) {
+                continue;
+            }
+            if node.count > 0 {
+                let first = node.offset as usize;
+                for &item in &bvh.order[first..first + node.count as usize] {
+                    match visit(item, t_max) {
+                        Some(t) => t_max = t,
+                        None => return,
+                    }
+                }
+            } else {
+                let (first, second) = (index + 1, node.offset);
+                if ray.dir[node.axis as usize] < 0.0 {
+                    stack.extend([first, second]);
+                } else {
+                    stack.extend([second, first]);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn children_tested_at_the_parent_visit_the_leaves_of_pop_then_test() {
+        // Random boxes (some flat, some sharing faces on a unit grid); random rays; each item
+        // "hit" at its box entry plus a per-item offset, so `t_max` falls during the traversal
+        // and the retest of stale stack entries is exercised. The calls to `visit` — items,
+        // order and the `t_max` each saw — must be those of the pop-then-test traversal.
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12);
+        for round in 0..20 {
+            let n = 5 + round * 13;
+            let boxes: Vec<Bounds3> = (0..n)
+                .map(|_| {
+                    let lo = DVec3::new(
+                        f64::from(rng.gen_range(-6..6)),
+                        f64::from(rng.gen_range(-6..6)),
+                        rng.gen_range(-6.0..6.0),
+                    );
+                    let size = DVec3::new(
+                        1.0,
+                        1.0,
+                        rng.gen_range(0.0..2.0) * f64::from(rng.gen_range(0..2)),
+                    );
+                    Bounds3::new(lo, lo + size)
+                })
+                .collect();
+            let bvh = Bvh::new(&boxes);
+            assert!(bvh.nodes.len() > 1, "a tree, not a flat list");
+            for k in 0..200 {
+                let o = DVec3::new(
+                    rng.gen_range(-10.0..10.0),
+                    rng.gen_range(-10.0..10.0),
+                    rng.gen_range(-10.0..10.0),
+                );
+                let mut d = DVec3::new(
+                    rng.gen_range(-1.0..1.0),
+                    rng.gen_range(-1.0..1.0),
+                    rng.gen_range(-1.0..1.0),
+                );
+                if k % 4 == 0 {
+                    d.x = 0.0; // along grid faces
+                }
+                let ray = Ray::new(o, d);
+                let stop_at = if k % 5 == 0 {
+                    Some(rng.gen_range(0..n) as u32)
+                } else {
+                    None
+                };
+                let calls = |traversal: &dyn Fn(&mut dyn FnMut(u32, f64) -> Option<f64>)| {
+                    let mut seen = Vec::new();
+                    traversal(&mut |item, t_max| {
+                        seen.push((item, t_max));
+                        if Some(item) == stop_at {
+                            return None;
+                        }
+                        let entry = boxes[item as usize].intersect_ray(&ray, 0.0..f64::INFINITY);
+                        Some(
+                            entry.map_or(t_max, |e| t_max.min(e.start + 0.1 * f64::from(item % 7))),
+                        )
+                    });
+                    seen
+                };
+                let fast = calls(&|f| bvh.traverse(&ray, 0.0..f64::INFINITY, &mut 0, f));
+                let slow = calls(&|f| pop_then_test(&bvh, &ray, 0.0..f64::INFINITY, f));
+                assert_eq!(fast, slow, "visits of {ray:?} over {n} boxes");
+            }
+        }
+    }
+
+    #[test]
+    fn a_flat_list_visits_every_item_in_index_order_without_a_box_test() {
+        // FLAT_MAX_ITEMS boxes far from the ray: each item is still offered (it tests its own
+        // box), in index order, and no node box is tested.
+        let boxes: Vec<Bounds3> = (0..FLAT_MAX_ITEMS)
+            .rev()
+            .map(|i| unit_box(2.0 * i as f64))
+            .collect();
+        let bvh = Bvh::new(&boxes);
+        assert_eq!(bvh.info().nodes, 1, "one leaf");
+        let ray = Ray::new(DVec3::new(0.5, 50.0, 0.5), DVec3::Y);
+        let (mut visits, mut seen) = (0, Vec::new());
+        bvh.traverse(&ray, 0.0..f64::INFINITY, &mut visits, |i, t| {
+            seen.push(i);
+            Some(t)
+        });
+        assert_eq!(seen, (0..FLAT_MAX_ITEMS as u32).collect::<Vec<_>>());
+        assert_eq!(visits, 0, "no box tested");
+        // One more item makes a tree, whose boxes the same ray misses.
+        let boxes: Vec<Bounds3> = (0..=FLAT_MAX_ITEMS)
+            .map(|i| unit_box(2.0 * i as f64))
+            .collect();
+        let bvh = Bvh::new(&boxes);
+        assert!(bvh.info().nodes > 1, "a tree");
+        seen.clear();
+        bvh.traverse(&ray, 0.0..f64::INFINITY, &mut visits, |i, t| {
+            seen.push(i);
+            Some(t)
+        });
+        assert!(seen.is_empty(), "the tree prunes at its root: {seen:?}");
+        assert_eq!(visits, 1, "the root's box only");
     }
 
     #[test]

@@ -9,7 +9,10 @@ use std::ops::Range;
 
 use crate::geometry::{Bounds3, Ray};
 
-pub use bvh::{Bvh, BvhInfo, MAX_DEPTH, MAX_LEAF_ITEMS, PRUNE_SLACK_REL, SAH_BINS, TRAVERSAL_COST};
+pub use bvh::{
+    Bvh, BvhInfo, FLAT_MAX_ITEMS, MAX_DEPTH, MAX_LEAF_ITEMS, PRUNE_SLACK_REL, SAH_BINS,
+    TRAVERSAL_COST,
+};
 
 /// A set of items split by whether they have a finite box: the bounded ones in a [`Bvh`],
 /// the unbounded ones (planes, unclipped algebraic surfaces) tested by every ray after it.
