@@ -3,11 +3,14 @@
 //!
 //! Built top-down with the surface area heuristic over [`SAH_BINS`] centroid bins per node
 //! (Wald 2007, "On fast construction of SAH-based bounding volume hierarchies"; pbrt-v4
-//! §7.3.2), the two halves of a large node in parallel (rayon), written depth-first as it goes
-//! so that a node's first child follows it and only the second child's index is stored
-//! (pbrt-v4 `LinearBVHNode`; no intermediate tree). Traversal visits the near child first (by the sign of the ray direction
-//! along the node's split axis) and skips every node that starts beyond the nearest hit found
-//! so far. See `paper-notes/bvh.md`.
+//! §7.3.2), the two halves of a large node in parallel (rayon), each subtree written in place
+//! into its own share of one node array (`2m − 1` slots for `m` items), depth-first, so that a
+//! node's first child follows it and only the second child's index is stored (pbrt-v4
+//! `LinearBVHNode`; no intermediate tree, no copies); unused slots are squeezed out at the end.
+//! Traversal tests both children at their parent, visits the near one first (by the sign of
+//! the ray direction along the node's split axis) and skips every node that starts beyond the
+//! nearest hit found so far; at most [`FLAT_MAX_ITEMS`] items are a flat list. See
+//! `paper-notes/bvh.md`.
 
 use std::ops::Range;
 use std::time::{Duration, Instant};
@@ -91,13 +94,29 @@ pub struct Bvh {
     info: BvhInfo,
 }
 
-/// An item during the build: its index, box and box centre.
+/// An item during the build: its index and box (56 bytes; the centre is recomputed where
+/// needed rather than stored, which kept 24 more bytes per item alive during the build).
 #[derive(Clone, Copy, Debug)]
 struct Item {
     index: u32,
     bounds: Bounds3,
-    centre: DVec3,
 }
+
+impl Item {
+    /// The centre of the item's box.
+    fn centre(&self) -> DVec3 {
+        (self.bounds.min + self.bounds.max) * 0.5
+    }
+}
+
+/// A slot of the build's node array not (yet) written: a subtree over `m` items is given
+/// `2m − 1` slots, and one with leaves of several items leaves some of them unused.
+const UNUSED: Node = Node {
+    bounds: EMPTY,
+    offset: 0,
+    count: u32::MAX,
+    axis: 0,
+};
 
 const EMPTY: Bounds3 = Bounds3 {
     min: DVec3::INFINITY,
@@ -121,7 +140,6 @@ impl Bvh {
             .map(|(i, b)| Item {
                 index: i as u32,
                 bounds: *b,
-                centre: (b.min + b.max) * 0.5,
             })
             .collect();
         let mut bvh = Bvh::default();
@@ -139,10 +157,12 @@ impl Bvh {
             });
             1
         } else {
-            // A binary tree with leaves of at least one item has fewer than 2n nodes.
-            bvh.nodes.reserve(2 * items.len());
-            let depth = build(&mut items, 0, 1, &mut bvh.nodes);
-            bvh.nodes.shrink_to_fit();
+            // A binary tree with leaves of at least one item has at most 2n − 1 nodes: each
+            // subtree is written in place into its share of them, then the unused slots are
+            // squeezed out.
+            bvh.nodes = vec![UNUSED; 2 * items.len() - 1];
+            let (used, depth) = build(&mut items, 0, 1, &mut bvh.nodes, 0);
+            compact(&mut bvh.nodes, used);
             depth
         };
         bvh.order = items.iter().map(|it| it.index).collect();
@@ -317,15 +337,25 @@ pub(super) fn precedes<H>(item: u32, t: f64, best: &Option<(u32, f64, H)>, end: 
     }
 }
 
-/// Appends the subtree of `items` (which start at `first` in the final item order) at `depth`
-/// to `out`, depth-first; inner nodes' child indices count from the start of `out`. Returns
-/// the subtree's depth.
-fn build(items: &mut [Item], first: usize, depth: usize, out: &mut Vec<Node>) -> usize {
+/// Writes the subtree of `items` (which start at `first` in the final item order) at `depth`
+/// into `out`, its `2·items.len() − 1` slots, depth-first from `out[0]`, which is node `base`
+/// of the whole array: the first child of an inner node follows it, the second starts the
+/// second half of its slots (`2·m − 1` slots for a child over `m` items). The two halves of a
+/// large node are built in parallel into their disjoint slots, so nothing is copied and no
+/// temporary node array exists. Returns the slots used and the subtree's depth.
+fn build(
+    items: &mut [Item],
+    first: usize,
+    depth: usize,
+    out: &mut [Node],
+    base: usize,
+) -> (usize, usize) {
     // The node's box and the box of its items' centres, in one pass.
     let (bounds, centres) = items.iter().fold((EMPTY, EMPTY), |(b, c), it| {
+        let centre = it.centre();
         (
             b.union(&it.bounds),
-            Bounds3::new(c.min.min(it.centre), c.max.max(it.centre)),
+            Bounds3::new(c.min.min(centre), c.max.max(centre)),
         )
     });
     let n = items.len();
@@ -336,8 +366,8 @@ fn build(items: &mut [Item], first: usize, depth: usize, out: &mut Vec<Node>) ->
         axis: 0,
     };
     if n == 1 || depth >= MAX_DEPTH {
-        out.push(leaf);
-        return 1;
+        out[0] = leaf;
+        return (1, 1);
     }
     let ext = centres.max - centres.min;
     let axis = if ext.x >= ext.y && ext.x >= ext.z {
@@ -351,54 +381,67 @@ fn build(items: &mut [Item], first: usize, depth: usize, out: &mut Vec<Node>) ->
         match sah_split(items, &bounds, centres.min[axis], ext[axis], axis) {
             Some(mid) => mid,
             None => {
-                out.push(leaf);
-                return 1;
+                out[0] = leaf;
+                return (1, 1);
             }
         }
     } else if n <= MAX_LEAF_ITEMS {
-        out.push(leaf);
-        return 1;
+        out[0] = leaf;
+        return (1, 1);
     } else {
         // Equal centres: no split separates them; halve by count so leaves stay small.
         n / 2
     };
-    let at = out.len();
-    out.push(Node {
+    let second = base + 2 * mid;
+    out[0] = Node {
         bounds,
-        offset: 0,
+        offset: second as u32,
         count: 0,
         axis: axis as u8,
-    });
-    let (lo, hi) = items.split_at_mut(mid);
-    let (dl, dr) = if n > PARALLEL_MIN_ITEMS {
-        // Each half into its own vector, then appended with its inner nodes' child indices
-        // moved by where it lands.
-        let (mut left, mut right) = (Vec::new(), Vec::new());
-        let (dl, dr) = rayon::join(
-            || build(lo, first, depth + 1, &mut left),
-            || build(hi, first + mid, depth + 1, &mut right),
-        );
-        append_subtree(out, left);
-        out[at].offset = out.len() as u32;
-        append_subtree(out, right);
-        (dl, dr)
-    } else {
-        let dl = build(lo, first, depth + 1, out);
-        out[at].offset = out.len() as u32;
-        (dl, build(hi, first + mid, depth + 1, out))
     };
-    1 + dl.max(dr)
+    let (lo, hi) = items.split_at_mut(mid);
+    let (left, right) = out[1..].split_at_mut(2 * mid - 1);
+    let ((ul, dl), (ur, dr)) = if n > PARALLEL_MIN_ITEMS {
+        rayon::join(
+            || build(lo, first, depth + 1, left, base + 1),
+            || build(hi, first + mid, depth + 1, right, second),
+        )
+    } else {
+        (
+            build(lo, first, depth + 1, left, base + 1),
+            build(hi, first + mid, depth + 1, right, second),
+        )
+    };
+    (1 + ul + ur, 1 + dl.max(dr))
 }
 
-/// Appends a subtree built in its own vector, rebasing its inner nodes' child indices.
-fn append_subtree(out: &mut Vec<Node>, sub: Vec<Node>) {
-    let base = out.len() as u32;
-    out.extend(sub.into_iter().map(|mut node| {
-        if node.count == 0 {
-            node.offset += base;
+/// Squeezes the [`UNUSED`] slots out of the node array written by [`build`] (`used` slots are
+/// nodes), keeping the depth-first order and renumbering the second-child indices. In place:
+/// a node only moves down, so each is read before any write reaches its slot.
+fn compact(nodes: &mut Vec<Node>, used: usize) {
+    if used < nodes.len() {
+        // The new index of each slot: the nodes before it.
+        let mut new_index = Vec::with_capacity(nodes.len());
+        let mut k = 0u32;
+        for node in nodes.iter() {
+            new_index.push(k);
+            k += u32::from(node.count != UNUSED.count);
         }
-        node
-    }));
+        let mut at = 0;
+        for i in 0..nodes.len() {
+            let mut node = nodes[i];
+            if node.count == UNUSED.count {
+                continue;
+            }
+            if node.count == 0 {
+                node.offset = new_index[node.offset as usize];
+            }
+            nodes[at] = node;
+            at += 1;
+        }
+        nodes.truncate(used);
+        nodes.shrink_to_fit();
+    }
 }
 
 /// The cheapest binned SAH split of `items` along `axis` (centres spanning `lo .. lo + ext`):
@@ -414,7 +457,7 @@ fn sah_split(
     let scale = SAH_BINS as f64 / ext;
     let bin_of = |it: &Item| -> usize {
         // A float-to-int `as` saturates (NaN → 0): any centre lands in some bin.
-        (((it.centre[axis] - lo) * scale) as usize).min(SAH_BINS - 1)
+        (((it.centre()[axis] - lo) * scale) as usize).min(SAH_BINS - 1)
     };
     let mut counts = [0usize; SAH_BINS];
     let mut boxes = [EMPTY; SAH_BINS];
@@ -688,6 +731,75 @@ mod tests {
         });
         assert!(seen.is_empty(), "the tree prunes at its root: {seen:?}");
         assert_eq!(visits, 1, "the root's box only");
+    }
+
+    /// Checks the subtree at `i` and returns its node count: an inner node's first child is
+    /// `i + 1` and its second child follows the first's subtree; boxes hold their children's
+    /// and items' boxes; leaves list their items in `order`. Marks the items seen.
+    fn check_subtree(bvh: &Bvh, boxes: &[Bounds3], i: usize, seen: &mut [bool]) -> usize {
+        let node = &bvh.nodes[i];
+        let holds = |outer: &Bounds3, inner: &Bounds3| {
+            outer.min.cmple(inner.min).all() && outer.max.cmpge(inner.max).all()
+        };
+        if node.count > 0 {
+            assert_ne!(node.count, UNUSED.count, "an unused slot at {i}");
+            let first = node.offset as usize;
+            for &item in &bvh.order[first..first + node.count as usize] {
+                assert!(!seen[item as usize], "item {item} in two leaves");
+                seen[item as usize] = true;
+                assert!(
+                    holds(&node.bounds, &boxes[item as usize]),
+                    "leaf {i} holds {item}"
+                );
+            }
+            return 1;
+        }
+        for child in [i + 1, node.offset as usize] {
+            assert!(
+                holds(&node.bounds, &bvh.nodes[child].bounds),
+                "{i} holds {child}"
+            );
+        }
+        let left = check_subtree(bvh, boxes, i + 1, seen);
+        assert_eq!(node.offset as usize, i + 1 + left, "second child of {i}");
+        1 + left + check_subtree(bvh, boxes, node.offset as usize, seen)
+    }
+
+    #[test]
+    fn the_in_place_build_writes_a_compact_depth_first_tree() {
+        // Above the parallel threshold, with single-item leaves (distinct boxes: every slot
+        // used) and with leaves of several items (groups of equal boxes: unused slots squeezed
+        // out), and a few items (sequential).
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12);
+        let distinct: Vec<Bounds3> = (0..PARALLEL_MIN_ITEMS + 3000)
+            .map(|_| {
+                let lo = DVec3::new(
+                    rng.gen_range(-50.0..50.0),
+                    rng.gen_range(-50.0..50.0),
+                    rng.gen_range(-50.0..50.0),
+                );
+                Bounds3::new(lo, lo + DVec3::splat(rng.gen_range(0.0..2.0)))
+            })
+            .collect();
+        let grouped: Vec<Bounds3> = (0..PARALLEL_MIN_ITEMS + 3000)
+            .map(|i| unit_box((i / 7) as f64 * 0.5))
+            .collect();
+        let few: Vec<Bounds3> = distinct[..40].to_vec();
+        for (name, boxes) in [("distinct", distinct), ("grouped", grouped), ("few", few)] {
+            let bvh = Bvh::new(&boxes);
+            let mut seen = vec![false; boxes.len()];
+            let count = check_subtree(&bvh, &boxes, 0, &mut seen);
+            assert_eq!(count, bvh.nodes.len(), "{name}: every node reached once");
+            assert!(seen.iter().all(|&s| s), "{name}: every item in a leaf");
+            assert_eq!(bvh.info().nodes, bvh.nodes.len(), "{name}: info");
+            if name == "grouped" {
+                assert!(
+                    bvh.nodes.len() < 2 * boxes.len() - 1,
+                    "leaves of several items"
+                );
+            }
+        }
     }
 
     #[test]

@@ -30,9 +30,9 @@ impl Aggregate {
     /// The aggregate of items `0..boxes.len()`, item `i` bounded by `boxes[i]` (`None`, or a
     /// box with a non-finite corner: unbounded).
     pub fn new(boxes: &[Option<Bounds3>]) -> Self {
-        let mut bounded = Vec::new();
+        let mut bounded = Vec::with_capacity(boxes.len());
         let mut unbounded = Vec::new();
-        let mut bvh_boxes = Vec::new();
+        let mut bvh_boxes = Vec::with_capacity(boxes.len());
         for (i, b) in boxes.iter().enumerate() {
             match b {
                 Some(b) if b.min.is_finite() && b.max.is_finite() => {
