@@ -210,6 +210,84 @@ fn bvh_nearest_hits_and_shadow_verdicts_equal_brute_force() {
     assert!(hits > rays / 3, "the rays do hit things: {hits} of {rays}");
 }
 
+/// Scenes of one to five objects (a flat list up to `FLAT_MAX_ITEMS` bounded ones, a tree
+/// above; issue 10): through the aggregate, the same nearest hits and shadow verdicts as a loop
+/// over all primitives, on rays at each primitive and through the shared face of two boxes.
+#[test]
+fn tiny_scenes_flat_or_not_equal_brute_force() {
+    let mut rng = ChaCha8Rng::seed_from_u64(10);
+    for n in 1..=5 {
+        let mut scene = Scene::default();
+        // Two unit boxes sharing the face x = 1, then spheres and a torus.
+        for i in 0..n.min(2) {
+            let x = i as f64;
+            scene.objects.push(Object::new(ShapeKind::Box {
+                min: DVec3::new(x, 0.0, 0.0),
+                max: DVec3::new(x + 1.0, 1.0, 1.0),
+            }));
+        }
+        for k in 2..n {
+            scene.objects.push(Object::new(if k == 4 {
+                ShapeKind::Torus {
+                    center: DVec3::new(0.0, 3.0, 0.5),
+                    axis: DVec3::Z,
+                    major: 1.0,
+                    minor: 0.3,
+                }
+            } else {
+                ShapeKind::Sphere {
+                    center: DVec3::new(3.0 * k as f64, 0.5, 0.5),
+                    radius: 0.8,
+                }
+            }));
+        }
+        scene.objects.push(Object::new(ShapeKind::Plane {
+            origin: DVec3::new(0.0, 0.0, -2.0),
+            normal: DVec3::Z,
+        }));
+        let prepared = PreparedScene::new(&ValidScene::new(scene).unwrap()).expect("valid scene");
+        let bounded = prepared.primitives.len() - 1;
+        assert_eq!(
+            prepared.aggregate.bvh_info().nodes == 1,
+            bounded <= render::aggregate::FLAT_MAX_ITEMS,
+            "a flat list exactly up to FLAT_MAX_ITEMS bounded objects ({bounded})"
+        );
+        let mut ws = Workspace::new();
+        for k in 0..400 {
+            let target = match k % 3 {
+                // The shared face x = 1 of the two boxes.
+                0 => DVec3::new(1.0, rng.gen_range(0.0..1.0), rng.gen_range(0.0..1.0)),
+                _ => prepared.primitives[rng.gen_range(0..bounded)]
+                    .surface
+                    .bounds()
+                    .map(|b| (b.min + b.max) * 0.5)
+                    .unwrap_or_default(),
+            };
+            let origin = DVec3::new(
+                rng.gen_range(-8.0..8.0),
+                rng.gen_range(-8.0..8.0),
+                rng.gen_range(-1.0..8.0),
+            );
+            let ray = Ray::new(origin, target - origin);
+            let range = 0.0..f64::INFINITY;
+            let fast = nearest_hit(&prepared, &ray, range.clone(), &mut ws);
+            assert_eq!(
+                fast,
+                brute_nearest(&prepared, &ray, range.clone(), &mut ws),
+                "nearest hit of {ray:?} among {n} objects"
+            );
+            let reach = fast.map_or(30.0, |(_, h)| h.t * 0.5);
+            for r in [range.clone(), 0.0..reach] {
+                assert_eq!(
+                    occluded(&prepared, &ray, r.clone(), &mut ws),
+                    brute_occluded(&prepared, &ray, r.clone(), &mut ws),
+                    "shadow verdict of {ray:?} over {r:?}"
+                );
+            }
+        }
+    }
+}
+
 /// Rays through a grid of flat boxes (zero thickness in z, sharing edges): the aggregate
 /// finds the same least `(t, item)` and the same any-hit verdict as a loop over all boxes.
 #[test]

@@ -283,7 +283,11 @@ fn slowest_cell_of_band(
 }
 
 /// The object whose nearest-hit query on the centre camera ray of `cell` takes longest, each
-/// object queried alone with a fresh workspace (one ray per object, after the render).
+/// object queried alone with fresh counters (one ray per object, after the render).
+///
+/// One workspace serves every object, its counters reset before each: a fresh workspace per
+/// object zeroed the Bézier solver's buffers each time, which cost more than the whole render
+/// of the 66 430-sphere SPD scene at 128² (`docs/speed.md`, "BVH traversal, third pass").
 fn slowest_object(
     scene: &PreparedScene,
     camera: &Camera,
@@ -293,8 +297,9 @@ fn slowest_object(
     let [w, h] = cell.size.map(f64::from);
     let ray = camera.ray(x + w / 2.0, y + h / 2.0);
     let mut slowest: Option<SlowObject> = None;
+    let mut ws = Workspace::new();
     for (index, p) in scene.primitives.iter().enumerate() {
-        let mut ws = Workspace::new();
+        ws.stats = TraceStats::default();
         let started = Instant::now();
         let _ = p.surface.intersect(&ray, 0.0..f64::INFINITY, &mut ws);
         let elapsed = started.elapsed();

@@ -90,17 +90,87 @@ pub fn nearest_hit(
 /// Whether any primitive blocks `ray` within `t_range` (through the scene's BVH); stops at the
 /// first blocker.
 pub fn occluded(scene: &PreparedScene, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> bool {
+    first_blocker(scene, ray, t_range, None, ws).is_some()
+}
+
+/// Whether primitive `i` blocks `ray` within `t_range`, counted in the statistics.
+fn blocks(
+    scene: &PreparedScene,
+    i: usize,
+    ray: &Ray,
+    t_range: Range<f64>,
+    ws: &mut Workspace,
+) -> bool {
+    let prim = &scene.primitives[i];
+    let kind = prim.surface.kind().index();
+    ws.stats.per_kind[kind].shadow_tests += 1;
+    let hit = prim.surface.occluded(ray, t_range, ws);
+    ws.stats.per_kind[kind].occlusions += u64::from(hit);
+    hit
+}
+
+/// The first primitive found blocking `ray` within `t_range` (through the scene's BVH), other
+/// than `known_clear`, which the caller has found not to block.
+fn first_blocker(
+    scene: &PreparedScene,
+    ray: &Ray,
+    t_range: Range<f64>,
+    known_clear: Option<u32>,
+    ws: &mut Workspace,
+) -> Option<u32> {
     let mut visits = 0;
-    let blocked = scene.aggregate.any(ray, t_range.clone(), &mut visits, |i| {
-        let prim = &scene.primitives[i as usize];
-        let kind = prim.surface.kind().index();
-        ws.stats.per_kind[kind].shadow_tests += 1;
-        let hit = prim.surface.occluded(ray, t_range.clone(), ws);
-        ws.stats.per_kind[kind].occlusions += u64::from(hit);
+    let mut blocker = None;
+    scene.aggregate.any(ray, t_range.clone(), &mut visits, |i| {
+        let hit = Some(i) != known_clear && blocks(scene, i as usize, ray, t_range.clone(), ws);
+        if hit {
+            blocker = Some(i);
+        }
         hit
     });
     ws.stats.bvh_node_visits += visits;
-    blocked
+    blocker
+}
+
+/// No cached blocker in [`Workspace::shadow_blockers`].
+const NO_BLOCKER: u32 = u32::MAX;
+
+/// [`occluded`] for a shadow ray towards light `light`, with a shadow cache (Haines and
+/// Greenberg 1986, "The light buffer: a shadow-testing accelerator"; POV-Ray's per-light
+/// cached object): the primitive that blocked this thread's last blocked shadow ray towards
+/// the same light is tested first, and only when it does not block is the BVH traversed
+/// (skipping that primitive), which then remembers the new blocker. Neighbouring shadow rays
+/// tend to be blocked by the same object, and a hit on it saves the whole traversal. The
+/// verdict is [`occluded`]'s: the cached primitive is one of those the traversal could test,
+/// its verdict on the ray is the same either way, and any blocker answers yes. See
+/// `paper-notes/bvh.md` §2.
+fn occluded_towards(
+    scene: &PreparedScene,
+    ray: &Ray,
+    t_range: Range<f64>,
+    light: usize,
+    ws: &mut Workspace,
+) -> bool {
+    if ws.shadow_blockers.len() <= light {
+        ws.shadow_blockers
+            .resize(scene.lights.len().max(light + 1), NO_BLOCKER);
+    }
+    let cached = ws.shadow_blockers[light];
+    // A workspace may come from another scene: an index out of range is no cache.
+    let known_clear = if (cached as usize) < scene.primitives.len() {
+        if blocks(scene, cached as usize, ray, t_range.clone(), ws) {
+            return true;
+        }
+        Some(cached)
+    } else {
+        None
+    };
+    match first_blocker(scene, ray, t_range, known_clear, ws) {
+        Some(i) => {
+            ws.shadow_blockers[light] = i;
+            true
+        }
+        None => false,
+    }
 }
 
 /// Traces a camera ray (depth 1, weight 1).
@@ -191,7 +261,7 @@ fn shade(
 
     // (2.8)–(2.10) diffuse and specular, per light.
     if m.illumination >= Illumination::Diffuse {
-        for light in &scene.lights {
+        for (light_index, light) in scene.lights.iter().enumerate() {
             let to_light = light.source - p;
             let dist = to_light.length();
             let l = to_light / dist;
@@ -205,7 +275,7 @@ fn shade(
                 let shadow = Ray::new(origin, l);
                 ws.stats.shadow_rays += 1;
                 let reach = (light.source - origin).length();
-                if occluded(scene, &shadow, 0.0..reach, ws) {
+                if occluded_towards(scene, &shadow, 0.0..reach, light_index, ws) {
                     ws.stats.shadow_blocked += 1;
                     continue;
                 }
@@ -294,4 +364,77 @@ fn shade(
 
     // Stam clamps each intensity to at most 1 (end of `Intensity`).
     color.min(DVec3::ONE)
+}
+
+#[cfg(test)]
+mod tests {
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    use super::*;
+    use crate::scene::{Light, Object, Scene, ShapeKind, ValidScene};
+
+    /// `n` random spheres in a 10-unit cube and one light above them.
+    fn spheres(n: usize, rng: &mut ChaCha8Rng) -> PreparedScene {
+        let mut scene = Scene::default();
+        for _ in 0..n {
+            scene.objects.push(Object::new(ShapeKind::Sphere {
+                center: DVec3::new(
+                    rng.gen_range(-5.0..5.0),
+                    rng.gen_range(-5.0..5.0),
+                    rng.gen_range(-5.0..5.0),
+                ),
+                radius: rng.gen_range(0.3..1.5),
+            }));
+        }
+        scene.lights.push(Light {
+            source: DVec3::new(0.0, 0.0, 20.0),
+            color: DVec3::ONE,
+        });
+        PreparedScene::new(&ValidScene::new(scene).expect("valid scene")).expect("prepared")
+    }
+
+    /// The shadow cache answers as the uncached query on coherent shadow rays (origins
+    /// creeping across the floor under the spheres, so the cached blocker often blocks the
+    /// next ray too, and often does not), and a workspace that cached a blocker in a larger
+    /// scene is harmless in a smaller one.
+    #[test]
+    fn shadow_cache_verdicts_equal_the_uncached_query() {
+        let mut rng = ChaCha8Rng::seed_from_u64(12);
+        let big = spheres(60, &mut rng);
+        let small = spheres(3, &mut rng);
+        let mut ws = Workspace::new();
+        let (mut blocked, mut cached_blocks) = (0, 0);
+        for scene in [&big, &small, &big] {
+            let light = scene.lights[0].source;
+            for k in 0..2000 {
+                let origin = DVec3::new(
+                    -6.0 + 12.0 * f64::from(k % 50) / 50.0,
+                    -6.0 + 12.0 * f64::from(k / 50) / 40.0,
+                    -6.0,
+                );
+                let ray = Ray::new(origin, light - origin);
+                let range = 0.0..1.0;
+                let before = ws.shadow_blockers.first().copied();
+                let with_cache = occluded_towards(scene, &ray, range.clone(), 0, &mut ws);
+                let brute = scene
+                    .primitives
+                    .iter()
+                    .any(|p| p.surface.occluded(&ray, range.clone(), &mut ws));
+                assert_eq!(with_cache, brute, "shadow verdict from {origin}");
+                assert_eq!(occluded(scene, &ray, range, &mut ws), brute, "uncached");
+                blocked += usize::from(brute);
+                cached_blocks +=
+                    usize::from(brute && before == ws.shadow_blockers.first().copied());
+            }
+        }
+        assert!(
+            blocked > 500 && blocked < 5500,
+            "a mix of verdicts: {blocked}"
+        );
+        assert!(
+            cached_blocks > blocked / 2,
+            "the cache answers most: {cached_blocks}"
+        );
+    }
 }

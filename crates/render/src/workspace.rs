@@ -14,6 +14,9 @@ pub struct Workspace {
     pub(crate) restrict: RestrictScratch,
     /// Buffers of the Bézier patches' per-ray algebra (`groebner::solve_ray_patch`).
     pub(crate) solver: groebner::SolveWorkspace,
+    /// Per light, the primitive that blocked this thread's last blocked shadow ray towards it
+    /// (`NO_BLOCKER` for none yet): the shadow cache of `whitted::occluded_towards`.
+    pub(crate) shadow_blockers: Vec<u32>,
     /// Counters.
     pub stats: TraceStats,
 }

@@ -3,11 +3,14 @@
 //!
 //! Built top-down with the surface area heuristic over [`SAH_BINS`] centroid bins per node
 //! (Wald 2007, "On fast construction of SAH-based bounding volume hierarchies"; pbrt-v4
-//! §7.3.2), the two halves of a large node in parallel (rayon), written depth-first as it goes
-//! so that a node's first child follows it and only the second child's index is stored
-//! (pbrt-v4 `LinearBVHNode`; no intermediate tree). Traversal visits the near child first (by the sign of the ray direction
-//! along the node's split axis) and skips every node that starts beyond the nearest hit found
-//! so far. See `paper-notes/bvh.md`.
+//! §7.3.2), the two halves of a large node in parallel (rayon), each subtree written in place
+//! into its own share of one node array (`2m − 1` slots for `m` items), depth-first, so that a
+//! node's first child follows it and only the second child's index is stored (pbrt-v4
+//! `LinearBVHNode`; no intermediate tree, no copies); unused slots are squeezed out at the end.
+//! Traversal tests both children at their parent, visits the near one first (by the sign of
+//! the ray direction along the node's split axis) and skips every node that starts beyond the
+//! nearest hit found so far; at most [`FLAT_MAX_ITEMS`] items are a flat list. See
+//! `paper-notes/bvh.md`.
 
 use std::ops::Range;
 use std::time::{Duration, Instant};
@@ -32,6 +35,15 @@ pub const MAX_LEAF_ITEMS: usize = 4;
 /// Depth limit of the tree (the root has depth 1): a node this deep becomes a leaf whatever
 /// it holds, so the fixed traversal stack of this many entries never overflows.
 pub const MAX_DEPTH: usize = 64;
+
+/// Hierarchies over at most this many items are a flat list: one leaf holding the items in
+/// index order, whose box is not tested. Every user's items test their own box first (an
+/// implicit surface clips the ray to its bounding volume, a polygon to its padded box, a
+/// sub-patch to its hull's box), so on such a list the root's slab test only repeats the
+/// items' own, and the traversal loop around it cost more than a loop over the items (issue 10:
+/// the Whitted torus's one-object BVH took 35 M of its 858 M instructions). Equal to
+/// [`MAX_LEAF_ITEMS`]: the SAH keeps most sets this small in one leaf anyway.
+pub const FLAT_MAX_ITEMS: usize = MAX_LEAF_ITEMS;
 
 /// Nodes with more items than this build their two halves in parallel: below it, the
 /// fork-join overhead of rayon exceeds the work.
@@ -82,13 +94,29 @@ pub struct Bvh {
     info: BvhInfo,
 }
 
-/// An item during the build: its index, box and box centre.
+/// An item during the build: its index and box (56 bytes; the centre is recomputed where
+/// needed rather than stored, which kept 24 more bytes per item alive during the build).
 #[derive(Clone, Copy, Debug)]
 struct Item {
     index: u32,
     bounds: Bounds3,
-    centre: DVec3,
 }
+
+impl Item {
+    /// The centre of the item's box.
+    fn centre(&self) -> DVec3 {
+        (self.bounds.min + self.bounds.max) * 0.5
+    }
+}
+
+/// A slot of the build's node array not (yet) written: a subtree over `m` items is given
+/// `2m − 1` slots, and one with leaves of several items leaves some of them unused.
+const UNUSED: Node = Node {
+    bounds: EMPTY,
+    offset: 0,
+    count: u32::MAX,
+    axis: 0,
+};
 
 const EMPTY: Bounds3 = Bounds3 {
     min: DVec3::INFINITY,
@@ -112,17 +140,31 @@ impl Bvh {
             .map(|(i, b)| Item {
                 index: i as u32,
                 bounds: *b,
-                centre: (b.min + b.max) * 0.5,
             })
             .collect();
         let mut bvh = Bvh::default();
         if items.is_empty() {
             return bvh;
         }
-        // A binary tree with leaves of at least one item has fewer than 2n nodes.
-        bvh.nodes.reserve(2 * items.len());
-        let depth = build(&mut items, 0, 1, &mut bvh.nodes);
-        bvh.nodes.shrink_to_fit();
+        let depth = if items.len() <= FLAT_MAX_ITEMS {
+            // The flat list: one leaf, items in index order (see `traverse`).
+            let bounds = items.iter().fold(EMPTY, |b, it| b.union(&it.bounds));
+            bvh.nodes.push(Node {
+                bounds,
+                offset: 0,
+                count: items.len() as u32,
+                axis: 0,
+            });
+            1
+        } else {
+            // A binary tree with leaves of at least one item has at most 2n − 1 nodes: each
+            // subtree is written in place into its share of them, then the unused slots are
+            // squeezed out.
+            bvh.nodes = vec![UNUSED; 2 * items.len() - 1];
+            let (used, depth) = build(&mut items, 0, 1, &mut bvh.nodes, 0);
+            compact(&mut bvh.nodes, used);
+            depth
+        };
         bvh.order = items.iter().map(|it| it.index).collect();
         bvh.info = BvhInfo {
             items: boxes.len(),
@@ -144,9 +186,18 @@ impl Bvh {
     }
 
     /// Calls `visit(item, t_max)` for the items of every leaf whose box the ray crosses before
-    /// the nearest hit so far, near children first. `visit` returns the new `t_max` (the
-    /// nearest hit so far, pruning farther nodes) or `None` to stop. Counts the nodes visited
-    /// in `visits`. Allocates nothing.
+    /// the nearest hit so far, near children first (by the sign of the ray direction along the
+    /// node's split axis). `visit` returns the new `t_max` (the nearest hit so far, pruning
+    /// farther nodes) or `None` to stop. A flat list (at most [`FLAT_MAX_ITEMS`] items) calls
+    /// `visit` for every item, in index order, without a box test: `visit` must test the
+    /// item's own box, as every user does. Counts the boxes tested in `visits`. Allocates
+    /// nothing.
+    ///
+    /// Both children of an inner node are tested there, and only those the ray crosses before
+    /// `t_max` are pushed; a pushed node's box is tested again when it is popped only if `t_max`
+    /// fell since it was pushed (a shadow ray's never falls). So the leaves visited, and their
+    /// order, are those of a traversal that tests each node when it pops it; missed children
+    /// are never pushed, popped or fetched again.
     pub fn traverse(
         &self,
         ray: &Ray,
@@ -154,32 +205,61 @@ impl Bvh {
         visits: &mut u64,
         mut visit: impl FnMut(u32, f64) -> Option<f64>,
     ) {
-        if self.nodes.is_empty() {
+        let Some(root) = self.nodes.first() else {
+            return;
+        };
+        let mut t_max = range.end;
+        if self.nodes.len() == 1 {
+            // One leaf: a flat list, or a single item.
+            let first = root.offset as usize;
+            for &item in &self.order[first..first + root.count as usize] {
+                match visit(item, t_max) {
+                    Some(t) => t_max = t,
+                    None => return,
+                }
+            }
             return;
         }
         let slab_ray = SlabRay::new(ray);
         let dir_neg = [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0];
-        let mut t_max = range.end;
+        // Whether the ray enters `node` before the nearest hit so far (the pruning test).
+        let crosses = |node: &Node, t_max: f64| -> bool {
+            node.bounds
+                .slab(&slab_ray, range.start, range.end)
+                .is_some_and(|(near, far)| {
+                    near <= t_max + PRUNE_SLACK_REL * (near.abs() + (far - near))
+                })
+        };
+        *visits += 1;
+        if !crosses(root, t_max) {
+            return;
+        }
         let mut stack = [0u32; MAX_DEPTH];
         let mut top = 1;
+        // Entries below `stale` were pushed before `t_max` last fell: retested when popped.
+        let mut stale = 0;
         while top > 0 {
             top -= 1;
             let index = stack[top] as usize;
             let node = &self.nodes[index];
-            *visits += 1;
-            let Some((near, far)) = node.bounds.slab(&slab_ray, range.start, range.end) else {
-                continue;
-            };
-            if near > t_max + PRUNE_SLACK_REL * (near.abs() + (far - near)) {
-                continue;
+            if top < stale {
+                stale = top;
+                *visits += 1;
+                if !crosses(node, t_max) {
+                    continue;
+                }
             }
             if node.count > 0 {
                 let first = node.offset as usize;
+                let before = t_max;
                 for &item in &self.order[first..first + node.count as usize] {
                     match visit(item, t_max) {
                         Some(t) => t_max = t,
                         None => return,
                     }
+                }
+                if t_max != before {
+                    stale = top;
                 }
             } else {
                 // Push the far child first so the near one is visited first. The depth limit
@@ -190,9 +270,13 @@ impl Bvh {
                 } else {
                     (first, second)
                 };
-                stack[top] = far_child;
-                stack[top + 1] = near_child;
-                top += 2;
+                *visits += 2;
+                for child in [far_child, near_child] {
+                    if crosses(&self.nodes[child as usize], t_max) {
+                        stack[top] = child;
+                        top += 1;
+                    }
+                }
             }
         }
     }
@@ -253,15 +337,25 @@ pub(super) fn precedes<H>(item: u32, t: f64, best: &Option<(u32, f64, H)>, end: 
     }
 }
 
-/// Appends the subtree of `items` (which start at `first` in the final item order) at `depth`
-/// to `out`, depth-first; inner nodes' child indices count from the start of `out`. Returns
-/// the subtree's depth.
-fn build(items: &mut [Item], first: usize, depth: usize, out: &mut Vec<Node>) -> usize {
+/// Writes the subtree of `items` (which start at `first` in the final item order) at `depth`
+/// into `out`, its `2·items.len() − 1` slots, depth-first from `out[0]`, which is node `base`
+/// of the whole array: the first child of an inner node follows it, the second starts the
+/// second half of its slots (`2·m − 1` slots for a child over `m` items). The two halves of a
+/// large node are built in parallel into their disjoint slots, so nothing is copied and no
+/// temporary node array exists. Returns the slots used and the subtree's depth.
+fn build(
+    items: &mut [Item],
+    first: usize,
+    depth: usize,
+    out: &mut [Node],
+    base: usize,
+) -> (usize, usize) {
     // The node's box and the box of its items' centres, in one pass.
     let (bounds, centres) = items.iter().fold((EMPTY, EMPTY), |(b, c), it| {
+        let centre = it.centre();
         (
             b.union(&it.bounds),
-            Bounds3::new(c.min.min(it.centre), c.max.max(it.centre)),
+            Bounds3::new(c.min.min(centre), c.max.max(centre)),
         )
     });
     let n = items.len();
@@ -272,8 +366,8 @@ fn build(items: &mut [Item], first: usize, depth: usize, out: &mut Vec<Node>) ->
         axis: 0,
     };
     if n == 1 || depth >= MAX_DEPTH {
-        out.push(leaf);
-        return 1;
+        out[0] = leaf;
+        return (1, 1);
     }
     let ext = centres.max - centres.min;
     let axis = if ext.x >= ext.y && ext.x >= ext.z {
@@ -287,54 +381,67 @@ fn build(items: &mut [Item], first: usize, depth: usize, out: &mut Vec<Node>) ->
         match sah_split(items, &bounds, centres.min[axis], ext[axis], axis) {
             Some(mid) => mid,
             None => {
-                out.push(leaf);
-                return 1;
+                out[0] = leaf;
+                return (1, 1);
             }
         }
     } else if n <= MAX_LEAF_ITEMS {
-        out.push(leaf);
-        return 1;
+        out[0] = leaf;
+        return (1, 1);
     } else {
         // Equal centres: no split separates them; halve by count so leaves stay small.
         n / 2
     };
-    let at = out.len();
-    out.push(Node {
+    let second = base + 2 * mid;
+    out[0] = Node {
         bounds,
-        offset: 0,
+        offset: second as u32,
         count: 0,
         axis: axis as u8,
-    });
-    let (lo, hi) = items.split_at_mut(mid);
-    let (dl, dr) = if n > PARALLEL_MIN_ITEMS {
-        // Each half into its own vector, then appended with its inner nodes' child indices
-        // moved by where it lands.
-        let (mut left, mut right) = (Vec::new(), Vec::new());
-        let (dl, dr) = rayon::join(
-            || build(lo, first, depth + 1, &mut left),
-            || build(hi, first + mid, depth + 1, &mut right),
-        );
-        append_subtree(out, left);
-        out[at].offset = out.len() as u32;
-        append_subtree(out, right);
-        (dl, dr)
-    } else {
-        let dl = build(lo, first, depth + 1, out);
-        out[at].offset = out.len() as u32;
-        (dl, build(hi, first + mid, depth + 1, out))
     };
-    1 + dl.max(dr)
+    let (lo, hi) = items.split_at_mut(mid);
+    let (left, right) = out[1..].split_at_mut(2 * mid - 1);
+    let ((ul, dl), (ur, dr)) = if n > PARALLEL_MIN_ITEMS {
+        rayon::join(
+            || build(lo, first, depth + 1, left, base + 1),
+            || build(hi, first + mid, depth + 1, right, second),
+        )
+    } else {
+        (
+            build(lo, first, depth + 1, left, base + 1),
+            build(hi, first + mid, depth + 1, right, second),
+        )
+    };
+    (1 + ul + ur, 1 + dl.max(dr))
 }
 
-/// Appends a subtree built in its own vector, rebasing its inner nodes' child indices.
-fn append_subtree(out: &mut Vec<Node>, sub: Vec<Node>) {
-    let base = out.len() as u32;
-    out.extend(sub.into_iter().map(|mut node| {
-        if node.count == 0 {
-            node.offset += base;
+/// Squeezes the [`UNUSED`] slots out of the node array written by [`build`] (`used` slots are
+/// nodes), keeping the depth-first order and renumbering the second-child indices. In place:
+/// a node only moves down, so each is read before any write reaches its slot.
+fn compact(nodes: &mut Vec<Node>, used: usize) {
+    if used < nodes.len() {
+        // The new index of each slot: the nodes before it.
+        let mut new_index = Vec::with_capacity(nodes.len());
+        let mut k = 0u32;
+        for node in nodes.iter() {
+            new_index.push(k);
+            k += u32::from(node.count != UNUSED.count);
         }
-        node
-    }));
+        let mut at = 0;
+        for i in 0..nodes.len() {
+            let mut node = nodes[i];
+            if node.count == UNUSED.count {
+                continue;
+            }
+            if node.count == 0 {
+                node.offset = new_index[node.offset as usize];
+            }
+            nodes[at] = node;
+            at += 1;
+        }
+        nodes.truncate(used);
+        nodes.shrink_to_fit();
+    }
 }
 
 /// The cheapest binned SAH split of `items` along `axis` (centres spanning `lo .. lo + ext`):
@@ -350,7 +457,7 @@ fn sah_split(
     let scale = SAH_BINS as f64 / ext;
     let bin_of = |it: &Item| -> usize {
         // A float-to-int `as` saturates (NaN → 0): any centre lands in some bin.
-        (((it.centre[axis] - lo) * scale) as usize).min(SAH_BINS - 1)
+        (((it.centre()[axis] - lo) * scale) as usize).min(SAH_BINS - 1)
     };
     let mut counts = [0usize; SAH_BINS];
     let mut boxes = [EMPTY; SAH_BINS];
@@ -484,6 +591,220 @@ mod tests {
         let mut visits = 0;
         let hit = bvh.nearest(&ray, 0.0..f64::INFINITY, &mut visits, |i| Some((4.0, i)));
         assert_eq!(hit.map(|h| h.0), Some(0), "the tie goes to item 0");
+    }
+
+    /// A traversal's callback: an item and the `t_max` it sees, the new `t_max` back.
+    type Visit<'a> = dyn FnMut(u32, f64) -> Option<f64> + 'a;
+
+    /// The traversal before children were tested at their parent (issue 12, third pass): pop a
+    /// node, test its box, prune, and push both children of an inner node. The leaves it visits
+    /// and their order are what [`Bvh::traverse`] must reproduce.
+    fn pop_then_test(
+        bvh: &Bvh,
+        ray: &Ray,
+        range: Range<f64>,
+        mut visit: impl FnMut(u32, f64) -> Option<f64>,
+    ) {
+        let slab_ray = SlabRay::new(ray);
+        let mut t_max = range.end;
+        let mut stack = vec![0u32];
+        while let Some(index) = stack.pop() {
+            let node = &bvh.nodes[index as usize];
+            let Some((near, far)) = node.bounds.slab(&slab_ray, range.start, range.end) else {
+                continue;
+            };
+            if near > t_max + PRUNE_SLACK_REL * (near.abs() + (far - near)) {
+                continue;
+            }
+            if node.count > 0 {
+                let first = node.offset as usize;
+                for &item in &bvh.order[first..first + node.count as usize] {
+                    match visit(item, t_max) {
+                        Some(t) => t_max = t,
+                        None => return,
+                    }
+                }
+            } else {
+                let (first, second) = (index + 1, node.offset);
+                if ray.dir[node.axis as usize] < 0.0 {
+                    stack.extend([first, second]);
+                } else {
+                    stack.extend([second, first]);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn children_tested_at_the_parent_visit_the_leaves_of_pop_then_test() {
+        // Random boxes (some flat, some sharing faces on a unit grid); random rays; each item
+        // "hit" at its box entry plus a per-item offset, so `t_max` falls during the traversal
+        // and the retest of stale stack entries is exercised. The calls to `visit` — items,
+        // order and the `t_max` each saw — must be those of the pop-then-test traversal.
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12);
+        for round in 0..20 {
+            let n = 5 + round * 13;
+            let boxes: Vec<Bounds3> = (0..n)
+                .map(|_| {
+                    let lo = DVec3::new(
+                        f64::from(rng.gen_range(-6..6)),
+                        f64::from(rng.gen_range(-6..6)),
+                        rng.gen_range(-6.0..6.0),
+                    );
+                    let size = DVec3::new(
+                        1.0,
+                        1.0,
+                        rng.gen_range(0.0..2.0) * f64::from(rng.gen_range(0..2)),
+                    );
+                    Bounds3::new(lo, lo + size)
+                })
+                .collect();
+            let bvh = Bvh::new(&boxes);
+            assert!(bvh.nodes.len() > 1, "a tree, not a flat list");
+            for k in 0..200 {
+                let mut o = DVec3::new(
+                    rng.gen_range(-10.0..10.0),
+                    rng.gen_range(-10.0..10.0),
+                    rng.gen_range(-10.0..10.0),
+                );
+                let mut d = DVec3::new(
+                    rng.gen_range(-1.0..1.0),
+                    rng.gen_range(-1.0..1.0),
+                    rng.gen_range(-1.0..1.0),
+                );
+                if k % 4 == 0 {
+                    // In a grid plane x = const, which boxes share as faces: NaN slabs.
+                    d.x = 0.0;
+                    o.x = f64::from(rng.gen_range(-6..6));
+                }
+                let ray = Ray::new(o, d);
+                let stop_at = if k % 5 == 0 {
+                    Some(rng.gen_range(0..n) as u32)
+                } else {
+                    None
+                };
+                let calls = |traversal: &dyn Fn(&mut Visit<'_>)| {
+                    let mut seen = Vec::new();
+                    traversal(&mut |item, t_max| {
+                        seen.push((item, t_max));
+                        if Some(item) == stop_at {
+                            return None;
+                        }
+                        let entry = boxes[item as usize].intersect_ray(&ray, 0.0..f64::INFINITY);
+                        Some(
+                            entry.map_or(t_max, |e| t_max.min(e.start + 0.1 * f64::from(item % 7))),
+                        )
+                    });
+                    seen
+                };
+                let fast = calls(&|f| bvh.traverse(&ray, 0.0..f64::INFINITY, &mut 0, f));
+                let slow = calls(&|f| pop_then_test(&bvh, &ray, 0.0..f64::INFINITY, f));
+                assert_eq!(fast, slow, "visits of {ray:?} over {n} boxes");
+            }
+        }
+    }
+
+    #[test]
+    fn a_flat_list_visits_every_item_in_index_order_without_a_box_test() {
+        // FLAT_MAX_ITEMS boxes far from the ray: each item is still offered (it tests its own
+        // box), in index order, and no node box is tested.
+        let boxes: Vec<Bounds3> = (0..FLAT_MAX_ITEMS)
+            .rev()
+            .map(|i| unit_box(2.0 * i as f64))
+            .collect();
+        let bvh = Bvh::new(&boxes);
+        assert_eq!(bvh.info().nodes, 1, "one leaf");
+        let ray = Ray::new(DVec3::new(0.5, 50.0, 0.5), DVec3::Y);
+        let (mut visits, mut seen) = (0, Vec::new());
+        bvh.traverse(&ray, 0.0..f64::INFINITY, &mut visits, |i, t| {
+            seen.push(i);
+            Some(t)
+        });
+        assert_eq!(seen, (0..FLAT_MAX_ITEMS as u32).collect::<Vec<_>>());
+        assert_eq!(visits, 0, "no box tested");
+        // One more item makes a tree, whose boxes the same ray misses.
+        let boxes: Vec<Bounds3> = (0..=FLAT_MAX_ITEMS)
+            .map(|i| unit_box(2.0 * i as f64))
+            .collect();
+        let bvh = Bvh::new(&boxes);
+        assert!(bvh.info().nodes > 1, "a tree");
+        seen.clear();
+        bvh.traverse(&ray, 0.0..f64::INFINITY, &mut visits, |i, t| {
+            seen.push(i);
+            Some(t)
+        });
+        assert!(seen.is_empty(), "the tree prunes at its root: {seen:?}");
+        assert_eq!(visits, 1, "the root's box only");
+    }
+
+    /// Checks the subtree at `i` and returns its node count: an inner node's first child is
+    /// `i + 1` and its second child follows the first's subtree; boxes hold their children's
+    /// and items' boxes; leaves list their items in `order`. Marks the items seen.
+    fn check_subtree(bvh: &Bvh, boxes: &[Bounds3], i: usize, seen: &mut [bool]) -> usize {
+        let node = &bvh.nodes[i];
+        let holds = |outer: &Bounds3, inner: &Bounds3| {
+            outer.min.cmple(inner.min).all() && outer.max.cmpge(inner.max).all()
+        };
+        if node.count > 0 {
+            assert_ne!(node.count, UNUSED.count, "an unused slot at {i}");
+            let first = node.offset as usize;
+            for &item in &bvh.order[first..first + node.count as usize] {
+                assert!(!seen[item as usize], "item {item} in two leaves");
+                seen[item as usize] = true;
+                assert!(
+                    holds(&node.bounds, &boxes[item as usize]),
+                    "leaf {i} holds {item}"
+                );
+            }
+            return 1;
+        }
+        for child in [i + 1, node.offset as usize] {
+            assert!(
+                holds(&node.bounds, &bvh.nodes[child].bounds),
+                "{i} holds {child}"
+            );
+        }
+        let left = check_subtree(bvh, boxes, i + 1, seen);
+        assert_eq!(node.offset as usize, i + 1 + left, "second child of {i}");
+        1 + left + check_subtree(bvh, boxes, node.offset as usize, seen)
+    }
+
+    #[test]
+    fn the_in_place_build_writes_a_compact_depth_first_tree() {
+        // Above the parallel threshold, with single-item leaves (distinct boxes: every slot
+        // used) and with leaves of several items (groups of equal boxes: unused slots squeezed
+        // out), and a few items (sequential).
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12);
+        let distinct: Vec<Bounds3> = (0..PARALLEL_MIN_ITEMS + 3000)
+            .map(|_| {
+                let lo = DVec3::new(
+                    rng.gen_range(-50.0..50.0),
+                    rng.gen_range(-50.0..50.0),
+                    rng.gen_range(-50.0..50.0),
+                );
+                Bounds3::new(lo, lo + DVec3::splat(rng.gen_range(0.0..2.0)))
+            })
+            .collect();
+        let grouped: Vec<Bounds3> = (0..PARALLEL_MIN_ITEMS + 3000)
+            .map(|i| unit_box((i / 7) as f64 * 0.5))
+            .collect();
+        let few: Vec<Bounds3> = distinct[..40].to_vec();
+        for (name, boxes) in [("distinct", distinct), ("grouped", grouped), ("few", few)] {
+            let bvh = Bvh::new(&boxes);
+            let mut seen = vec![false; boxes.len()];
+            let count = check_subtree(&bvh, &boxes, 0, &mut seen);
+            assert_eq!(count, bvh.nodes.len(), "{name}: every node reached once");
+            assert!(seen.iter().all(|&s| s), "{name}: every item in a leaf");
+            assert_eq!(bvh.info().nodes, bvh.nodes.len(), "{name}: info");
+            if name == "grouped" {
+                assert!(
+                    bvh.nodes.len() < 2 * boxes.len() - 1,
+                    "leaves of several items"
+                );
+            }
+        }
     }
 
     #[test]

@@ -9,7 +9,10 @@ use std::ops::Range;
 
 use crate::geometry::{Bounds3, Ray};
 
-pub use bvh::{Bvh, BvhInfo, MAX_DEPTH, MAX_LEAF_ITEMS, PRUNE_SLACK_REL, SAH_BINS, TRAVERSAL_COST};
+pub use bvh::{
+    Bvh, BvhInfo, FLAT_MAX_ITEMS, MAX_DEPTH, MAX_LEAF_ITEMS, PRUNE_SLACK_REL, SAH_BINS,
+    TRAVERSAL_COST,
+};
 
 /// A set of items split by whether they have a finite box: the bounded ones in a [`Bvh`],
 /// the unbounded ones (planes, unclipped algebraic surfaces) tested by every ray after it.
@@ -27,9 +30,9 @@ impl Aggregate {
     /// The aggregate of items `0..boxes.len()`, item `i` bounded by `boxes[i]` (`None`, or a
     /// box with a non-finite corner: unbounded).
     pub fn new(boxes: &[Option<Bounds3>]) -> Self {
-        let mut bounded = Vec::new();
+        let mut bounded = Vec::with_capacity(boxes.len());
         let mut unbounded = Vec::new();
-        let mut bvh_boxes = Vec::new();
+        let mut bvh_boxes = Vec::with_capacity(boxes.len());
         for (i, b) in boxes.iter().enumerate() {
             match b {
                 Some(b) if b.min.is_finite() && b.max.is_finite() => {
