@@ -34,6 +34,10 @@ const state = {
 
 // Counters read by the browser test and by the measurements.
 window.explorer = { frames: 0, fullFrames: 0, errors: 0, lastRoundTripMs: 0, lastServerMs: 0 };
+// True when the last change's full render (or its error) is on screen and nothing is in
+// flight: the image will not change until the next edit.
+window.explorer.settled = () =>
+  state.shownGen === state.gen && state.fullGen === state.gen && !state.inflight;
 
 function number(v) {
   let s = v.toFixed(4).replace(/0+$/, '').replace(/\.$/, '');

@@ -197,6 +197,13 @@ async fn the_explorer_works_in_headless_chromium() {
         (js(&c, "return document.getElementById('error').textContent").await == "").then_some(())
     })
     .await;
+    // The full render follows the preview and replaces the image: "the last good image"
+    // is the one on screen once that has arrived (taking it earlier raced the full render
+    // on a loaded machine).
+    wait_for("the full render of the typed equation", || async {
+        (js(&c, "return window.explorer.settled()").await == true).then_some(())
+    })
+    .await;
     let good = image_src(&c).await;
 
     // A syntax error is shown at its line and column; the last good image stays.
