@@ -315,6 +315,11 @@ fn scaled_abs_weight(c: &[f64], r: f64) -> (f64, i32) {
     let (mut s, mut e) = (0.0f64, 0i32);
     for &ci in c.iter().rev() {
         s *= r;
+        if !s.is_finite() {
+            // `r` beyond `2^400`: no renormalisation can follow it (and `∞·2^-600` would
+            // loop forever).
+            return (f64::INFINITY, e);
+        }
         while s > 1.0 / renorm {
             s *= renorm;
             e += RENORM_BITS;
@@ -1034,6 +1039,20 @@ mod tests {
             m.is_finite() && e >= 1200,
             "2^1280 leaves f64's range: {m}·2^{e}"
         );
+        // Regression: a radius whose product with the sum overflows even after
+        // renormalising made the renormalisation loop forever (`∞·2^-600 = ∞`); found by
+        // the peers bench on the Orellana–De Michele quartics over (−∞, ∞).
+        let small = [1.0, 2.0, 3.0, 4.0, 5.0];
+        for r in [1e300, f64::MAX] {
+            assert_eq!(scaled_abs_weight(&small, r).0, f64::INFINITY, "r = {r:e}");
+        }
+        // Below that the renormalised sum still bounds the exact one.
+        let (m, e) = scaled_abs_weight(&small, 1e200);
+        let exact = small.iter().rev().fold(Rat::zero(), |acc, ci| {
+            acc * rat_from_f64(1e200).unwrap() + rat_from_f64(*ci).unwrap()
+        });
+        let bound = rat_from_f64(m).unwrap() * Rat::from_integer(2.into()).pow(e);
+        assert!(m.is_finite() && bound >= exact, "r = 1e200: {m}·2^{e}");
     }
 
     proptest! {
