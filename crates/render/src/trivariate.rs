@@ -132,19 +132,73 @@ impl Poly3 {
 
     /// `self^k` by repeated squaring (`self^0 = 1`).
     pub fn pow(&self, k: u32) -> Self {
+        self.checked_pow(k, usize::MAX)
+            .expect("no limit on the term products")
+    }
+
+    /// [`Poly3::pow`], or `None` as soon as one of its multiplications would take more than
+    /// `max_products` term products (see [`Poly3::checked_mul`]).
+    pub fn checked_pow(&self, k: u32, max_products: usize) -> Option<Self> {
         let mut result = Poly3::constant(1.0);
         let mut base = self.clone();
         let mut k = k;
         while k > 0 {
             if k & 1 == 1 {
-                result = &result * &base;
+                result = result.checked_mul(&base, max_products)?;
             }
             k >>= 1;
             if k > 0 {
-                base = &base * &base;
+                base = base.checked_mul(&base, max_products)?;
             }
         }
-        result
+        Some(result)
+    }
+
+    /// `self · rhs`, or `None` when that takes more than `max_products` term products
+    /// (`terms(self) · terms(rhs)`), checked before any work.
+    ///
+    /// The products are summed into a dense array over the exponent box of the result, in the
+    /// order `self`'s terms × `rhs`'s terms, so each coefficient is the same left-to-right
+    /// sum as a sort-and-merge would give; memory is the box (at most `(N + 1)³` for total
+    /// degree `N`), not the number of products.
+    ///
+    /// # Complexity
+    /// `O(terms(self)·terms(rhs) + box)`.
+    pub fn checked_mul(&self, rhs: &Poly3, max_products: usize) -> Option<Self> {
+        if self.terms.len().checked_mul(rhs.terms.len())? > max_products {
+            return None;
+        }
+        if self.is_zero() || rhs.is_zero() {
+            return Some(Poly3::zero());
+        }
+        let (da, db) = (self.partial_degrees(), rhs.partial_degrees());
+        let side = [0, 1, 2].map(|k| (da[k] + db[k]) as usize + 1);
+        let index =
+            |e: [u32; 3]| (e[0] as usize * side[1] + e[1] as usize) * side[2] + e[2] as usize;
+        let mut dense = vec![0.0f64; side[0] * side[1] * side[2]];
+        for a in &self.terms {
+            for b in &rhs.terms {
+                let e = [
+                    a.exps[0] + b.exps[0],
+                    a.exps[1] + b.exps[1],
+                    a.exps[2] + b.exps[2],
+                ];
+                dense[index(e)] += a.coeff * b.coeff;
+            }
+        }
+        let mut terms = Vec::new();
+        for (n, &coeff) in dense.iter().enumerate() {
+            if coeff != 0.0 {
+                let z = n % side[2];
+                let y = (n / side[2]) % side[1];
+                let x = n / (side[1] * side[2]);
+                terms.push(Term3 {
+                    coeff,
+                    exps: [x as u32, y as u32, z as u32],
+                });
+            }
+        }
+        Some(Poly3 { terms })
     }
 
     /// `∂F/∂x_axis` (`axis` 0, 1, 2 for x, y, z).
@@ -205,12 +259,25 @@ impl Poly3 {
     /// factors, then summed); likewise each gradient component against `grad_abs`.
     pub fn eval_grad(&self, p: DVec3) -> Eval3 {
         let deg = self.partial_degrees();
-        let mut out = Eval3::default();
-        let mut tables = [[0.0f64; STACK_POWERS]; 6];
-        let fits = deg.iter().all(|&d| (d as usize) < STACK_POWERS);
-        if !fits {
-            return self.eval_grad_slow(p);
+        let width = deg.iter().max().map_or(0, |&d| d as usize) + 1;
+        if width <= STACK_POWERS {
+            let mut tables = [[0.0f64; STACK_POWERS]; 6];
+            let mut rows = tables.each_mut().map(|t| &mut t[..]);
+            self.eval_grad_with(p, deg, &mut rows)
+        } else {
+            // Degree-64 and higher surfaces: one allocation per shaded hit.
+            let mut heap = vec![0.0f64; 6 * width];
+            let mut chunks = heap.chunks_mut(width);
+            let mut rows: [&mut [f64]; 6] =
+                std::array::from_fn(|_| chunks.next().expect("six rows of the table"));
+            self.eval_grad_with(p, deg, &mut rows)
         }
+    }
+
+    /// [`Poly3::eval_grad`] with power tables `tables[k][e] = p_k^e`, `tables[k + 3][e] =
+    /// |p_k|^e`, each row at least `partial_degrees[k] + 1` long.
+    fn eval_grad_with(&self, p: DVec3, deg: [u32; 3], tables: &mut [&mut [f64]; 6]) -> Eval3 {
+        let mut out = Eval3::default();
         for k in 0..3 {
             let (v, a) = (p[k], p[k].abs());
             tables[k][0] = 1.0;
@@ -245,17 +312,6 @@ impl Poly3 {
             }
         }
         out
-    }
-
-    /// [`Poly3::eval_grad`] for partial degrees beyond the stack tables.
-    fn eval_grad_slow(&self, p: DVec3) -> Eval3 {
-        let g = self.gradient_polys();
-        Eval3 {
-            f: self.eval(p),
-            f_abs: self.eval_abs(p),
-            grad: DVec3::new(g[0].eval(p), g[1].eval(p), g[2].eval(p)),
-            grad_abs: DVec3::new(g[0].eval_abs(p), g[1].eval_abs(p), g[2].eval_abs(p)),
-        }
     }
 
     /// `G(x, y, z) = F(A·(x, y, z) + b)` for a 3×3 matrix `A` (columns) and offset `b`:
@@ -366,7 +422,8 @@ impl Poly3 {
     }
 }
 
-/// Partial degrees below this use stack power tables in [`Poly3::eval_grad`].
+/// Partial degrees below this use stack power tables in [`Poly3::eval_grad`] (higher ones a
+/// heap table of the same layout).
 const STACK_POWERS: usize = 24;
 
 /// `F`, `∇F` and their absolute-value sums at a point (see [`Poly3::eval_grad`]).
@@ -439,18 +496,8 @@ impl Sub for &Poly3 {
 impl Mul for &Poly3 {
     type Output = Poly3;
     fn mul(self, rhs: &Poly3) -> Poly3 {
-        let mut prods = Vec::with_capacity(self.terms.len() * rhs.terms.len());
-        for a in &self.terms {
-            for b in &rhs.terms {
-                let e = [
-                    a.exps[0] + b.exps[0],
-                    a.exps[1] + b.exps[1],
-                    a.exps[2] + b.exps[2],
-                ];
-                prods.push((a.coeff * b.coeff, e));
-            }
-        }
-        Poly3::from_terms(prods)
+        self.checked_mul(rhs, usize::MAX)
+            .expect("no limit on the term products")
     }
 }
 
@@ -625,7 +672,12 @@ mod tests {
         let slow = big.eval_grad(DVec3::new(1.1, 0.0, 0.0));
         assert!(
             (slow.grad.x - 30.0 * 1.1f64.powi(29)).abs() < 1e-9,
-            "degree 30 falls back"
+            "degree 30 uses the heap tables"
+        );
+        assert!(
+            (slow.f - 1.1f64.powi(30)).abs() < 1e-12 * slow.f_abs,
+            "and F from the same table: {}",
+            slow.f
         );
     }
 }
