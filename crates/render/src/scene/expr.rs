@@ -20,7 +20,7 @@ use crate::trivariate::Poly3;
 /// The highest total degree an `Equation` may have.
 ///
 /// Derivation: the scene language promises any degree a surface needs; 128 is twice the
-/// degree of the highest example (`scenes/cube64.scene`) and keeps every structure
+/// degree of the highest example (`scenes/quartic-power64.scene`) and keeps every structure
 /// sized by the degree small: at most `C(131, 3) = 366 145` monomials (about 9 MB of terms),
 /// ray polynomials of 129 coefficients, restriction tables of `129·130/2` entries. Expansion
 /// time is bounded separately, by [`MAX_TERM_PRODUCTS`].
