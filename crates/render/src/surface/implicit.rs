@@ -273,8 +273,8 @@ pub(crate) fn search_start(range_start: f64, t0: f64, chord: f64) -> f64 {
     }
 }
 
-/// Where an unbounded surface (or one of degree [`CENTRED_MIN_DEGREE`] or more) is restricted
-/// to `ray`: the point of the ray nearest the
+/// Where an unbounded surface of degree 3 or more (or any of degree [`CENTRED_MIN_DEGREE`] or
+/// more) is restricted to `ray`: the point of the ray nearest the
 /// coordinate origin in the metric `Σ w_k x_k²` (`w` the partial degrees of `F`), clamped to
 /// the search range `[start, end]`; `start` when `F` does not vary along the ray's axes.
 ///
@@ -350,7 +350,10 @@ impl<F: ImplicitFn> Implicit<F> {
         // what keeps hits exact far from the camera (paper-notes/implicit-surfaces.md §2).
         let entry = seg.start;
         let start = entry + search_start(range_start, entry, seg.end - entry);
-        let centred = self.bounds.is_none() || self.degree >= CENTRED_MIN_DEGREE;
+        // Degrees 1–2 keep the range start: their closed forms lose at most `|o|²/size²`
+        // there, and their range stays open exactly at the start.
+        let centred =
+            self.degree >= 3 && (self.bounds.is_none() || self.degree >= CENTRED_MIN_DEGREE);
         let t0 = if centred {
             expansion_point(ray, self.weights, start, seg.end)
         } else {
@@ -370,7 +373,7 @@ impl<F: ImplicitFn> Implicit<F> {
             self.x_tol(ray.dir, o, hi - lo)
         };
         let opts = self.roots.options(x_tol);
-        let s = if centred && ws.coeffs.len() > 3 {
+        let s = if centred {
             smallest_root_split(ws, lo, hi, &opts)?
         } else {
             smallest_root_in(ws, lo, hi, &opts)?
