@@ -29,12 +29,12 @@ pub const MAX_EQUATION_DEGREE: u32 = 128;
 /// The most term products one multiplication of an `Equation`'s expansion may take
 /// (`terms(a) · terms(b)`), checked before it starts: 2²⁵ ≈ 3.4·10⁷.
 ///
-/// Derivation: a product costs a few nanoseconds ([`Poly3::checked_mul`] sums into a dense
-/// array), so the limit is about a tenth of a second in a release build for adversarial
-/// input. It admits every sparse or homogeneous expansion up to the degree limit
-/// (`(x + y + z)^128`: 8 385 terms, its last squaring 2 145² = 4.6·10⁶ products) and dense
-/// ones to degree 48 (`(x + y + z + 1)^48`), and refuses `(x + y + z + 1)^128` (366 145
-/// terms; its last squaring alone needs 2.3·10⁹ products) at its operator.
+/// Derivation: [`Poly3::checked_mul`] sums into a dense array, a few flops per product, so
+/// an adversarial equation at the limit parses in well under a second (measured in
+/// `paper-notes/scene-language.md` §5). It admits `(x + y + z)^128` (8 385 terms, its last
+/// squaring 2 145² = 4.6·10⁶ products) and dense equations at least to degree 48
+/// (`(x + y + z + 1)^48`), and refuses `(x + y + z + 1)^128` (366 145 terms; its last
+/// squaring alone needs 2.3·10⁹ products) at its operator.
 pub const MAX_TERM_PRODUCTS: usize = 1 << 25;
 
 /// A value and where it was written. Equality compares the values only, so two trees that
