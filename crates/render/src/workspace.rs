@@ -10,6 +10,8 @@ use crate::trivariate::RestrictScratch;
 pub struct Workspace {
     /// Coefficients of the current restricted polynomial, low → high.
     pub(crate) coeffs: Vec<f64>,
+    /// Roots of one half of an unbounded surface's split query (`surface/implicit.rs`).
+    pub(crate) roots: Vec<f64>,
     /// Scratch for the trivariate restriction.
     pub(crate) restrict: RestrictScratch,
     /// Buffers of the Bézier patches' per-ray algebra (`groebner::solve_ray_patch`).

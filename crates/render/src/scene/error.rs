@@ -371,6 +371,18 @@ pub enum ErrorKind {
         /// The operation, as printed (shortened).
         expr: String,
     },
+    /// An equation whose expansion would take too long: one multiplication (or power) of it
+    /// needs more term products than the limit.
+    #[error(
+        "expanding `{expr}` needs more than {max} term products; write it with fewer terms \
+         or in a lower degree"
+    )]
+    ExpansionTooLarge {
+        /// The limit (`MAX_TERM_PRODUCTS`).
+        max: usize,
+        /// The operation, as printed (shortened).
+        expr: String,
+    },
     /// `Texture = name` with no `#texture` of that name, or `TEXTURE` illumination without a
     /// texture to use.
     #[error("{reason}")]

@@ -19,12 +19,23 @@ use crate::trivariate::Poly3;
 
 /// The highest total degree an `Equation` may have.
 ///
-/// Derivation: expanding a product of two polynomials of degrees `a` and `b` costs
-/// `C(a+3,3)·C(b+3,3)` term products; with `a + b ≤ 32` the worst case (`a = b = 16`) is
-/// about 10⁶, a fraction of a second even for adversarial input. Stam's Sturm code was stable
-/// only below degree 9 (§5); degree 32 is far beyond anything that renders cleanly in `f64`,
-/// so the limit costs no real scene anything.
-pub const MAX_EQUATION_DEGREE: u32 = 32;
+/// Derivation: the scene language promises any degree a surface needs; 128 is twice the
+/// degree of the highest example (`scenes/quartic-power64.scene`) and keeps every structure
+/// sized by the degree small: at most `C(131, 3) = 366 145` monomials (about 9 MB of terms),
+/// ray polynomials of 129 coefficients, restriction tables of `129·130/2` entries. Expansion
+/// time is bounded separately, by [`MAX_TERM_PRODUCTS`].
+pub const MAX_EQUATION_DEGREE: u32 = 128;
+
+/// The most term products one multiplication of an `Equation`'s expansion may take
+/// (`terms(a) · terms(b)`), checked before it starts: 2²⁵ ≈ 3.4·10⁷.
+///
+/// Derivation: [`Poly3::checked_mul`] sums into a dense array, a few flops per product, so
+/// an adversarial equation at the limit parses in well under a second (measured in
+/// `paper-notes/scene-language.md` §5). It admits `(x + y + z)^128` (8 385 terms, its last
+/// squaring 2 145² = 4.6·10⁶ products) and dense equations at least to degree 48
+/// (`(x + y + z + 1)^48`), and refuses `(x + y + z + 1)^128` (366 145 terms; its last
+/// squaring alone needs 2.3·10⁹ products) at its operator.
+pub const MAX_TERM_PRODUCTS: usize = 1 << 25;
 
 /// A value and where it was written. Equality compares the values only, so two trees that
 /// say the same thing are equal wherever their text sits (as `toml::Spanned` does).
@@ -179,8 +190,9 @@ pub(crate) fn eval_const(e: &Expr, env: &Constants) -> Result<f64, SceneError> {
     Ok(constant_value(&p).unwrap_or(0.0))
 }
 
-/// Expands an `Equation` into `Σ a_ijk x^i y^j z^k`, refusing non-polynomial input and any
-/// total degree above [`MAX_EQUATION_DEGREE`].
+/// Expands an `Equation` into `Σ a_ijk x^i y^j z^k`, refusing non-polynomial input, any
+/// total degree above [`MAX_EQUATION_DEGREE`] and any multiplication of more than
+/// [`MAX_TERM_PRODUCTS`] term products.
 ///
 /// # Accuracy
 /// Coefficients are computed in `f64` in the order the expression dictates; integer and
@@ -225,6 +237,17 @@ fn degree_check(span: &Span, degree: u64, e: &Expr) -> Result<(), SceneError> {
         ));
     }
     Ok(())
+}
+
+/// The error for an expansion step that would take more than [`MAX_TERM_PRODUCTS`].
+fn too_many_products(span: &Span, e: &Expr) -> SceneError {
+    SceneError::at(
+        span,
+        ErrorKind::ExpansionTooLarge {
+            max: MAX_TERM_PRODUCTS,
+            expr: quote(e),
+        },
+    )
 }
 
 /// A finite result, or an overflow error at `span` quoting `e`.
@@ -314,7 +337,9 @@ fn expand_in(e: &Expr, env: &Constants, vars: bool) -> Result<Poly3, SceneError>
                     let p = match (constant_value(&a), constant_value(&b)) {
                         (Some(c), _) => b.scale(c),
                         (_, Some(c)) => a.scale(c),
-                        (None, None) => &a * &b,
+                        (None, None) => a
+                            .checked_mul(&b, MAX_TERM_PRODUCTS)
+                            .ok_or_else(|| too_many_products(span, e))?,
                     };
                     finite(p, span, e)
                 }
@@ -382,7 +407,10 @@ fn expand_in(e: &Expr, env: &Constants, vars: bool) -> Result<Poly3, SceneError>
                         }
                         degree_check(span, degree as u64, e)?;
                     }
-                    finite(a.pow(k as u32), span, e)
+                    let p = a
+                        .checked_pow(k as u32, MAX_TERM_PRODUCTS)
+                        .ok_or_else(|| too_many_products(span, e))?;
+                    finite(p, span, e)
                 }
             }
         }

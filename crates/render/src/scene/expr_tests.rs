@@ -218,12 +218,17 @@ fn non_polynomials_are_refused_at_the_offending_token() {
             "e.scene:2:14: division by zero in `x / (2 - 2)`",
         ),
         (
-            "Equation = (x + y + z)^40",
-            "e.scene:2:23: degree 40 of `(x + y + z)^40` exceeds the maximum 32",
+            "Equation = (x + y + z)^130",
+            "e.scene:2:23: degree 130 of `(x + y + z)^130` exceeds the maximum 128",
         ),
         (
-            "Equation = (x^16 + 1)*(y^17 + 1)",
-            "e.scene:2:22: degree 33 of `(x^16 + 1) * (y^17 + 1)` exceeds the maximum 32",
+            "Equation = (x^64 + 1)*(y^65 + 1)",
+            "e.scene:2:22: degree 129 of `(x^64 + 1) * (y^65 + 1)` exceeds the maximum 128",
+        ),
+        (
+            "Equation = (x + y + z + 1)^128",
+            "e.scene:2:27: expanding `(x + y + z + 1)^128` needs more than 33554432 term \
+             products; write it with fewer terms or in a lower degree",
         ),
         (
             "Equation = 10^400*x",
@@ -246,8 +251,8 @@ fn non_polynomials_are_refused_at_the_offending_token() {
             "e.scene:2:79: division by zero in `(1 + 2 + 3 + 4 + 5 + 6 + 7 + 8 + 9 + 10…`",
         ),
         (
-            "Equation = (x + 1 + 2 + 3 + 4 + 5 + 6 + 7 + 8 + 9 + 10 + 11 + 12 + 13)^33",
-            "e.scene:2:71: degree 33 of `(x + 1 + 2 + 3 + 4 + 5 + 6 + 7 + 8 + 9…` exceeds the maximum 32",
+            "Equation = (x + 1 + 2 + 3 + 4 + 5 + 6 + 7 + 8 + 9 + 10 + 11 + 12 + 13)^129",
+            "e.scene:2:71: degree 129 of `(x + 1 + 2 + 3 + 4 + 5 + 6 + 7 + 8 + 9…` exceeds the maximum 128",
         ),
     ];
     for (src, message) in cases {
@@ -258,15 +263,40 @@ fn non_polynomials_are_refused_at_the_offending_token() {
 
 #[test]
 fn degree_limit_allows_exactly_the_maximum() {
-    let f = equation("Equation = (x^16 + 1)*(y^16 - z) + x^31*(2 + 1)*z").unwrap();
-    assert_eq!(f.degree(), MAX_EQUATION_DEGREE, "degree 32 is accepted");
+    let f = equation("Equation = (x^64 + 1)*(y^64 - z) + x^127*(2 + 1)*z").unwrap();
+    assert_eq!(f.degree(), MAX_EQUATION_DEGREE, "degree 128 is accepted");
     assert_eq!(f.terms().len(), 5, "{f}");
-    let err = equation("Equation = x^32*y").unwrap_err();
+    let err = equation("Equation = x^128*y").unwrap_err();
     assert!(
         matches!(
             err.kind(),
-            Some(ErrorKind::DegreeTooHigh { degree: 33, .. })
+            Some(ErrorKind::DegreeTooHigh { degree: 129, .. })
         ),
         "{err}"
+    );
+}
+
+/// Issue 11: the degree cap was 32; `(x + y + z)^128` now expands (8 385 terms, its largest
+/// multiplication 2 145² term products, within `MAX_TERM_PRODUCTS`).
+#[test]
+fn r11_degree_128_expands_within_the_product_limit() {
+    let f = equation("Equation = (x + y + z)^128").unwrap();
+    assert_eq!(f.degree(), 128, "degree");
+    assert_eq!(
+        f.terms().len(),
+        130 * 129 / 2,
+        "C(130, 2) monomials of degree 128"
+    );
+    let middle = f
+        .terms()
+        .iter()
+        .find(|t| t.exps == [64, 64, 0])
+        .expect("x^64 y^64 is a term");
+    // C(128, 64) = 2.395...e37, computed as a product of ratios.
+    let binomial = (1..=64).fold(1.0f64, |c, i| c * f64::from(64 + i) / f64::from(i));
+    assert!(
+        (middle.coeff - binomial).abs() <= 1e-12 * binomial,
+        "coefficient of x^64 y^64: {} against C(128, 64) = {binomial}",
+        middle.coeff
     );
 }

@@ -33,7 +33,7 @@ pub use build::{
     MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_RECURSION_DEPTH, build, check_image_size, load, parse,
 };
 pub use error::{ErrorKind, MAX_MESSAGE_CHARS, MAX_QUOTED_CHARS, SceneError, Span, escape_message};
-pub use expr::{Axis, BinOp, Expr, ExprKind, MAX_EQUATION_DEGREE, Spanned};
+pub use expr::{Axis, BinOp, Expr, ExprKind, MAX_EQUATION_DEGREE, MAX_TERM_PRODUCTS, Spanned};
 pub use model::MAX_SUPERQUADRIC_POWER;
 pub use nff::{MAX_NFF_VERTICES, is_nff, nff_material, parse_nff};
 pub use placement::Placement;

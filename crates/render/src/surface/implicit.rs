@@ -6,7 +6,7 @@
 use std::ops::Range;
 
 use glam::{DVec2, DVec3};
-use poly::{PolyRef, RootOptions};
+use poly::{Poly, PolyRef, RootOptions};
 
 use crate::methods::RootMethods;
 
@@ -21,6 +21,18 @@ use crate::workspace::Workspace;
 /// distance, and cheap: refinement converges superlinearly, so halving it costs a fraction of
 /// one evaluation. (Absolute in `t`; the bound `poly` guarantees for an isolated simple root.)
 pub const ROOT_X_TOL_REL: f64 = 1.0 / (1u64 << 33) as f64;
+
+/// The degree from which a bounded surface, too, is restricted at the centred expansion point
+/// of [`expansion_point`] (with the split query of [`smallest_root_split`]) rather than at
+/// its bounding-volume entry; unbounded surfaces always are.
+///
+/// Why 9: restricted at the entry, the rounding of the restriction at a root can reach
+/// `3^N` times `F`'s own scale there (entry and root anywhere in the box, `|o'_k| + |d_k s*|`
+/// up to three half-widths), i.e. `u·3^N` relative: 10⁻¹² for the sextic Barth surface, but
+/// 10⁻⁸ at degree 16 and 10¹⁴ at degree 64, where the stored polynomial no longer holds the
+/// surface. Below 9 the entry keeps its speed (no Taylor shift in `poly`, one query) and the
+/// golden images of the torus and Barth scenes are unchanged.
+pub(crate) const CENTRED_MIN_DEGREE: u32 = 9;
 
 /// Relative error assumed for a hit at a singular point (`∇F` indistinguishable from zero),
 /// where the residual bound `|F|/|∇F|` is meaningless: the spawned ray is offset by this
@@ -78,6 +90,9 @@ pub struct Implicit<F> {
     clip_sphere: Option<(DVec3, f64)>,
     /// How the ray polynomial's smallest root is found (set once per render).
     roots: RootMethods,
+    /// The partial degrees of `F`, the metric of an unbounded surface's expansion point
+    /// ([`expansion_point`]).
+    weights: DVec3,
 }
 
 impl<F: ImplicitFn> Implicit<F> {
@@ -90,8 +105,10 @@ impl<F: ImplicitFn> Implicit<F> {
             (a, b) => a.or(b),
         };
         let diagonal = bounds.map_or(0.0, |b| b.diagonal());
+        let weights = DVec3::from_array(f.poly().partial_degrees().map(f64::from));
         Implicit {
             f,
+            weights,
             degree,
             diagonal,
             bounds,
@@ -149,6 +166,71 @@ pub(crate) fn smallest_root_in(
     query.stats(&mut ws.stats.roots).smallest().ok().flatten()
 }
 
+/// The smallest root in `(lo, hi]` of the polynomial in `ws.coeffs` (`lo ≤ 0 < hi`, `hi`
+/// possibly infinite), restricted at the expansion point `s = 0`: the query of an unbounded
+/// surface of degree 3 or more, and of every surface of degree [`CENTRED_MIN_DEGREE`] or
+/// more.
+///
+/// Two things keep it at `f64` speed where one query over `(lo, hi]` was not (issue 11,
+/// `x^32 − 1`: 45 µs a ray, most in double-double, after the expansion point had fixed the
+/// restriction itself):
+/// - Both ends are cut to `poly`'s root bound `B` ([`Poly::root_bound`], Fujiwara's), which
+///   `poly` applies only to an infinite end, and then as Cauchy's bound — for `(d_x s)^32 − 1`
+///   10¹², where the polynomial overflows, so its end sign could not be certified and the query
+///   fell to exact rational isolation; a far finite `lo` (the eye) is kept as it is.
+/// - The range is split at the expansion point `s = 0` into `(0, hi]` and, reflected
+///   (`u = −s`, odd coefficients negated, exactly), `[0, −lo)`. `poly`'s certified run bounds
+///   its rounding by `γ·Σ|c_i|(|a| + w)^i` for a run on `[a, a + w]`; on `[−B, B]` that is
+///   `Σ|c_i|(3B)^i`, `3^N` times the size of the polynomial there, so the search stalled near
+///   the roots. From 0 outwards it is `Σ|c_i|B^i`, the polynomial's own scale.
+///
+/// The reflected half wants its *largest* root (the smallest `s`): all its roots are found and
+/// the largest kept. A root exactly at `s = 0` is one of the stored polynomial (`c₀ = 0`).
+fn smallest_root_split(ws: &mut Workspace, lo: f64, hi: f64, opts: &RootOptions) -> Option<f64> {
+    let p = Poly::new(std::mem::take(&mut ws.coeffs));
+    let bound = p.root_bound();
+    ws.coeffs = p.into_coeffs();
+    let (lo, hi) = match bound {
+        Some(b) => (lo.max((-b).next_down()), hi.min(b)),
+        None => (lo, hi),
+    };
+    if lo < 0.0 {
+        reflect(&mut ws.coeffs);
+        ws.roots.clear();
+        let found = PolyRef::new(&ws.coeffs)
+            .roots(0.0, -lo, opts)
+            .stats(&mut ws.stats.roots)
+            .all_into(&mut ws.roots);
+        reflect(&mut ws.coeffs);
+        // `(lo, …]` is open at `lo`: a root at `u = −lo` exactly is the range start.
+        let left = ws
+            .roots
+            .iter()
+            .map(|&u| -u)
+            .filter(|&s| s > lo)
+            .reduce(f64::min);
+        if found.is_ok()
+            && let Some(s) = left
+        {
+            return Some(s);
+        }
+    }
+    if ws.coeffs.first() == Some(&0.0) && lo < 0.0 && 0.0 <= hi {
+        return Some(0.0);
+    }
+    if hi > 0.0 {
+        return smallest_root_in(ws, lo.max(0.0), hi, opts);
+    }
+    None
+}
+
+/// `p(x) → p(−x)`: negates the odd coefficients (exact).
+fn reflect(coeffs: &mut [f64]) {
+    for c in coeffs.iter_mut().skip(1).step_by(2) {
+        *c = -*c;
+    }
+}
+
 /// Relative margin by which [`sphere_segment`] widens the bounding sphere and the interval, far
 /// above the few roundings of the computation, so a ray touching the sphere is never clipped.
 const SPHERE_CLIP_MARGIN: f64 = 1e-9;
@@ -189,6 +271,30 @@ pub(crate) fn search_start(range_start: f64, t0: f64, chord: f64) -> f64 {
     } else {
         0.0
     }
+}
+
+/// Where an unbounded surface of degree 3 or more (or any of degree [`CENTRED_MIN_DEGREE`] or
+/// more) is restricted to `ray`: the point of the ray nearest the
+/// coordinate origin in the metric `Σ w_k x_k²` (`w` the partial degrees of `F`), clamped to
+/// the search range `[start, end]`; `start` when `F` does not vary along the ray's axes.
+///
+/// Why: `F = Σ a_ijk x^i y^j z^k` is written about the origin, and the rounding error of its
+/// restriction at `o'`, at a root `s*`, scales like `Σ|a_ijk| Π(|o'_k| + |d_k s*|)^e_k`
+/// (`Poly3::restrict_into`). Restricted at the eye, that is `|eye_x|^N` against a surface of
+/// size 1: for `x^32 − 1` seen from 12 units, 10³⁰ times the values near the roots, so the
+/// stored polynomial had lost the surface (hits off by a third of the distance, rays missed)
+/// and its isolation fell to exact arithmetic (issue 11). The weights put the point where
+/// the axes of high degree are small: for `x^32 − 1` on the plane `x = 0`, where the
+/// restriction `(d_x s)^32 − 1` is exact; with equal weights (Barth, a power of a sphere) it is
+/// the Euclidean nearest point, where `|o'| ≤ |p*|` and `|p* − o'| ≤ |p*|` for every root point
+/// `p*` (`paper-notes/implicit-surfaces.md` §2).
+fn expansion_point(ray: &Ray, w: DVec3, start: f64, end: f64) -> f64 {
+    let wd = w * ray.dir;
+    let nearest = -wd.dot(ray.origin) / wd.dot(ray.dir);
+    if nearest.is_nan() {
+        return start;
+    }
+    nearest.max(start).min(end)
 }
 
 /// Clips `t_range` to `bounds` (counting a rejection for `kind`), or passes it through for an
@@ -243,22 +349,35 @@ impl<F: ImplicitFn> Implicit<F> {
         // restricted polynomial is then built from small numbers near the surface, which is
         // what keeps hits exact far from the camera (paper-notes/implicit-surfaces.md §2).
         let entry = seg.start;
-        let lo = search_start(range_start, entry, seg.end - entry);
-        // The search then starts at s = 0 of the restriction (the isolator's first node needs
-        // no Taylor shift there).
-        let t0 = entry + lo;
+        let start = entry + search_start(range_start, entry, seg.end - entry);
+        // Degrees 1–2 keep the range start: their closed forms lose at most `|o|²/size²`
+        // there, and their range stays open exactly at the start.
+        let centred =
+            self.degree >= 3 && (self.bounds.is_none() || self.degree >= CENTRED_MIN_DEGREE);
+        let t0 = if centred {
+            expansion_point(ray, self.weights, start, seg.end)
+        } else {
+            // The search then starts at s = 0 of the restriction (the isolator's first node
+            // needs no Taylor shift there).
+            start
+        };
         let o = ray.at(t0);
         self.f
             .restrict(o, ray.dir, &mut ws.restrict, &mut ws.coeffs);
         let hi = seg.end - t0;
-        let lo = 0.0;
+        let lo = start - t0;
         let x_tol = if any_root && hi.is_finite() {
             // Any root proves occlusion: any point of the range will do as its value.
             hi - lo
         } else {
-            self.x_tol(ray.dir, o, hi)
+            self.x_tol(ray.dir, o, hi - lo)
         };
-        let s = smallest_root_in(ws, lo, hi, &self.roots.options(x_tol))?;
+        let opts = self.roots.options(x_tol);
+        let s = if centred {
+            smallest_root_split(ws, lo, hi, &opts)?
+        } else {
+            smallest_root_in(ws, lo, hi, &opts)?
+        };
         Some((t0 + s, o + ray.dir * s))
     }
 }
@@ -331,7 +450,85 @@ pub(crate) fn gradient_normal(e: Eval3, degree: u32) -> Option<(Option<DVec3>, D
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::surface::{Plane, Sphere};
+    use crate::surface::{Algebraic, Plane, Sphere};
+    use crate::trivariate::Poly3;
+
+    /// `n × n` rays from `eye` through a square of half-width `half` about the origin, in
+    /// the plane through the origin facing the eye.
+    fn camera_rays(eye: DVec3, half: f64, n: usize) -> Vec<Ray> {
+        let w = (-eye).normalize();
+        let u = w.cross(DVec3::Z).normalize();
+        let v = u.cross(w);
+        let at = |k: usize| ((k as f64 + 0.5) / n as f64 * 2.0 - 1.0) * half;
+        (0..n * n)
+            .map(|k| Ray::new(eye, u * at(k % n) + v * at(k / n) - eye))
+            .collect()
+    }
+
+    /// Issue 11: `x^32 − 1 = 0` (the planes `x = ±1`, no bounding volume) was restricted at
+    /// the eye, where its rounding is 10³⁰ times the surface's values: hits came out at the
+    /// wrong depth or not at all, and every query ended in exact rational isolation. Restricted
+    /// at the plane `x = 0` of the ray, each hit is the plane's to 1e-9 relative, in `f64`.
+    #[test]
+    fn r11_unbounded_x32_minus_1_hits_its_planes_in_f64() {
+        let f = &Poly3::x().pow(32) - &Poly3::constant(1.0);
+        let surface = Implicit::new(Algebraic::new(f), None);
+        let eye = DVec3::new(5.0, -9.0, 6.0);
+        let mut ws = Workspace::new();
+        for ray in camera_rays(eye, 3.2, 12) {
+            let hit = surface.intersect(&ray, 0.0..f64::INFINITY, &mut ws);
+            // Coming from x = 5, the first plane crossed is x = 1 (when moving towards it).
+            let want = (ray.dir.x < 0.0).then(|| (1.0 - eye.x) / ray.dir.x);
+            match (hit, want) {
+                (Some(h), Some(t)) => {
+                    assert!((h.t - t).abs() <= 1e-9 * t, "ray {ray:?}: t {} vs {t}", h.t)
+                }
+                (h, t) => assert_eq!(h.map(|h| h.t), t, "hit/miss of {ray:?}"),
+            }
+        }
+        let roots = &ws.stats.roots;
+        assert_eq!(
+            (roots.exact_fallbacks, roots.adaptive_pieces),
+            (0, 0),
+            "decided in f64: {roots:?}"
+        );
+    }
+
+    /// Issue 11: a degree-64 surface, `g^16 − 2^-16` with the well-conditioned quartic
+    /// `g = x⁴ + y⁴ + z⁴` (`scenes/quartic-power64.scene`), has the real set of `g = 1/2`. Traced
+    /// in a box, it must hit and miss where the quartic does, at the same depth; restricted at
+    /// the box entry, its restriction's rounding was 10¹⁴ times its values.
+    #[test]
+    fn r11_degree_64_power_matches_its_quartic() {
+        let g = &(&Poly3::x().pow(4) + &Poly3::y().pow(4)) + &Poly3::z().pow(4);
+        let half = Poly3::constant(0.5);
+        let power = &g.pow(16) - &half.pow(16);
+        assert_eq!(power.degree(), 64, "degree");
+        let bounds = Some(Bounds3::new(DVec3::splat(-0.9), DVec3::splat(0.9)));
+        let high = Implicit::new(Algebraic::new(power), bounds);
+        let low = Implicit::new(Algebraic::new(&g - &half), bounds);
+        let eye = DVec3::new(5.0, -9.0, 6.0);
+        let mut ws = Workspace::new();
+        let mut hits = 0;
+        for ray in camera_rays(eye, 1.0, 12) {
+            let a = high.intersect(&ray, 0.0..f64::INFINITY, &mut ws);
+            let b = low.intersect(&ray, 0.0..f64::INFINITY, &mut ws);
+            match (a, b) {
+                (Some(a), Some(b)) => {
+                    hits += 1;
+                    assert!(
+                        (a.t - b.t).abs() <= 1e-9 * b.t,
+                        "{ray:?}: {} vs {}",
+                        a.t,
+                        b.t
+                    );
+                }
+                (a, b) => assert_eq!(a.map(|h| h.t), b.map(|h| h.t), "hit/miss of {ray:?}"),
+            }
+        }
+        assert!(hits > 30, "the rays cover the surface: {hits} hits of 144");
+        assert_eq!(ws.stats.roots.exact_fallbacks, 0, "{:?}", ws.stats.roots);
+    }
 
     #[test]
     fn unbounded_plane_is_hit_over_an_infinite_range() {
