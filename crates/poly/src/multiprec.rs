@@ -156,25 +156,44 @@ impl BigArith {
 
 const RM: RoundingMode = RoundingMode::ToEven;
 
+/// `2^64`: scales any subnormal `f64` (at least `2^-1074`) into the normal range exactly.
+const SUBNORMAL_LIFT: f64 = 18_446_744_073_709_551_616.0;
+
+/// `x` as a [`BigFloat`], exactly. Why not `BigFloat::from_f64` alone: in astro-float 0.9.6
+/// it converts a subnormal to *half* its value (the exponent of a subnormal is taken as
+/// `−1023` instead of `−1022`), which made the certified path return roots of
+/// `1.877e-308·x² − 3.83` that were `√2` too large (issue 13 follow-up). A subnormal is
+/// therefore converted as the normal `x·2^64` (exact) with its exponent lowered by 64.
+fn big_from_f64(x: f64) -> BigFloat {
+    if !x.is_subnormal() {
+        return BigFloat::from_f64(x, 64);
+    }
+    let mut b = BigFloat::from_f64(x * SUBNORMAL_LIFT, 64);
+    if let Some(e) = b.exponent() {
+        b.set_exponent(e - 64);
+    }
+    b
+}
+
 impl Arith for BigArith {
     type T = BigFloat;
     fn exact_f64(&self, x: f64) -> BigFloat {
-        BigFloat::from_f64(x, 64)
+        big_from_f64(x)
     }
     fn exact_pair(&self, hi: f64, lo: f64) -> BigFloat {
-        BigFloat::from_f64(hi, 64).add(&BigFloat::from_f64(lo, 64), EXACT_PAIR_BITS, RM)
+        big_from_f64(hi).add(&big_from_f64(lo), EXACT_PAIR_BITS, RM)
     }
     fn add(&self, x: &BigFloat, y: &BigFloat) -> BigFloat {
         x.add(y, self.bits, RM)
     }
     fn add_f(&self, x: &BigFloat, y: f64) -> BigFloat {
-        x.add(&BigFloat::from_f64(y, 64), self.bits, RM)
+        x.add(&big_from_f64(y), self.bits, RM)
     }
     fn mul(&self, x: &BigFloat, y: &BigFloat) -> BigFloat {
         x.mul(y, self.bits, RM)
     }
     fn mul_f(&self, x: &BigFloat, y: f64) -> BigFloat {
-        x.mul(&BigFloat::from_f64(y, 64), self.bits, RM)
+        x.mul(&big_from_f64(y), self.bits, RM)
     }
     fn sign_beyond(&self, x: &BigFloat, k: usize, scale: f64, _tiny: f64) -> i8 {
         if x.is_nan() || x.is_inf() {
@@ -186,8 +205,7 @@ impl Arith for BigArith {
         if (k as f64) * u >= 0.5 {
             return 0;
         }
-        let mut bound =
-            BigFloat::from_f64(scale * (2.0 * k as f64) * (1.0 + 4.0 * f64::EPSILON), 64);
+        let mut bound = big_from_f64(scale * (2.0 * k as f64) * (1.0 + 4.0 * f64::EPSILON));
         if let Some(e) = bound.exponent() {
             bound.set_exponent(e - (self.bits as i32 - 1));
         } else if !bound.is_zero() {
@@ -611,6 +629,27 @@ mod tests {
     use crate::scalar::{Rat, rat_from_f64};
     use crate::univariate::Poly;
     use num_traits::Signed;
+
+    /// Issue 13 follow-up: astro-float's `BigFloat::from_f64` halves subnormals, which made
+    /// the certified path return the roots of `1.877e-308·x² − 3.83` `√2` too large. The
+    /// conversion used here is exact: a subnormal times `2^600` (exact in `f64`, a normal
+    /// number) equals its conversion times `2^600` in the wide format.
+    #[test]
+    fn subnormal_f64_converts_to_bigfloat_exactly() {
+        let lift = 2f64.powi(600);
+        for x in [
+            5e-324,
+            -5e-324,
+            1.877_230_785_675_903_7e-308,
+            f64::MIN_POSITIVE.next_down(),
+            -3.1e-320,
+            f64::MIN_POSITIVE,
+            1.5,
+        ] {
+            let wide = big_from_f64(x).mul(&big_from_f64(lift), 256, RM);
+            assert_eq!(wide, big_from_f64(x * lift), "{x:e}·2^600");
+        }
+    }
 
     /// `|computed − exact| ≤ bound` for the double-double operations on awkward operands.
     #[test]
