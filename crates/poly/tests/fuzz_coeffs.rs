@@ -227,9 +227,12 @@ fn fuzz(seed: u64, cases: usize) -> Tally {
             Ok(Err(why)) => why,
             Err(_) => "panicked".to_string(),
         };
-        failures.push(format!(
+        let failure = format!(
             "case {case}: coefficients {coeffs:?} on ({lo:e}, {hi:e}] x_tol {x_tol:e}: {failure}"
-        ));
+        );
+        // At once, so that a long campaign shows its failures while it runs.
+        eprintln!("fuzz_coeffs seed {seed}: {failure}");
+        failures.push(failure);
     }
     eprintln!("fuzz_coeffs seed {seed}: {cases} cases, {tally:?}");
     assert!(
