@@ -95,9 +95,12 @@ trait Arith {
     fn add_f(&self, x: &Self::T, y: f64) -> Self::T;
     fn mul(&self, x: &Self::T, y: &Self::T) -> Self::T;
     fn mul_f(&self, x: &Self::T, y: f64) -> Self::T;
-    /// The sign of the exact value of `x` when `|x|` exceeds `γ(k)·scale + tiny` (the
-    /// program's bound; `scale ≥ 0` finite, computed rounded up), else 0.
-    fn sign_beyond(&self, x: &Self::T, k: usize, scale: f64, tiny: f64) -> i8;
+    /// Whether the tier's exponent range is unbounded, so that it can use a [`Mag::Wide`]
+    /// magnitude (one that overflows `f64`).
+    const WIDE_RANGE: bool;
+    /// The sign of the exact value of `x` when `|x|` exceeds `γ(k)·mag·mult + tiny` (the
+    /// program's bound; `mag` and `mult ≥ 0` computed rounded up), else 0.
+    fn sign_beyond(&self, x: &Self::T, k: usize, mag: &Mag, mult: f64, tiny: f64) -> i8;
     /// The absolute underflow error of one operation (0 without underflow).
     fn underflow(&self) -> f64;
 }
@@ -124,8 +127,12 @@ impl Arith for DdArith {
     fn mul_f(&self, x: &Dd, y: f64) -> Dd {
         x.mul_f(y)
     }
-    fn sign_beyond(&self, x: &Dd, k: usize, scale: f64, tiny: f64) -> i8 {
-        let bound = gamma_u(k, DD_UNIT) * scale * (1.0 + 4.0 * f64::EPSILON) + tiny;
+    const WIDE_RANGE: bool = false;
+    fn sign_beyond(&self, x: &Dd, k: usize, mag: &Mag, mult: f64, tiny: f64) -> i8 {
+        let Mag::F64(scale) = mag else {
+            return 0;
+        };
+        let bound = gamma_u(k, DD_UNIT) * (scale * mult) * (1.0 + 4.0 * f64::EPSILON) + tiny;
         if bound.is_finite() {
             x.sign_beyond(bound)
         } else {
@@ -195,17 +202,22 @@ impl Arith for BigArith {
     fn mul_f(&self, x: &BigFloat, y: f64) -> BigFloat {
         x.mul(&big_from_f64(y), self.bits, RM)
     }
-    fn sign_beyond(&self, x: &BigFloat, k: usize, scale: f64, _tiny: f64) -> i8 {
+    const WIDE_RANGE: bool = true;
+    fn sign_beyond(&self, x: &BigFloat, k: usize, mag: &Mag, mult: f64, _tiny: f64) -> i8 {
         if x.is_nan() || x.is_inf() {
             return 0;
         }
-        // γ(k)·scale ≤ 2k·u·scale for k·u ≤ 1/2: the bound is formed in the wide format (u
-        // far below f64's range), rounded up.
+        // γ(k)·mag·mult ≤ 2k·u·mag·mult for k·u ≤ 1/2: the bound is formed in the wide
+        // format (u far below f64's range, and mag possibly beyond it), rounded up.
         let u = self.unit();
         if (k as f64) * u >= 0.5 {
             return 0;
         }
-        let mut bound = big_from_f64(scale * (2.0 * k as f64) * (1.0 + 4.0 * f64::EPSILON));
+        let factor = big_from_f64(mult * (2.0 * k as f64) * (1.0 + 4.0 * f64::EPSILON));
+        let mut bound = match mag {
+            Mag::F64(scale) => big_from_f64(*scale).mul(&factor, 128, RoundingMode::Up),
+            Mag::Wide(scale) => scale.mul(&factor, 128, RoundingMode::Up),
+        };
         if let Some(e) = bound.exponent() {
             bound.set_exponent(e - (self.bits as i32 - 1));
         } else if !bound.is_zero() {
@@ -226,6 +238,36 @@ impl Arith for BigArith {
     }
 }
 
+/// `M = Σ|cᵢ|·rⁱ`, the magnitude in the error bounds, computed rounded up: in `f64`
+/// ([`abs_weights`]), or, when that overflows and the tier has an unbounded exponent range,
+/// as a [`BigFloat`] rounded up at every step. Why the wide form: with coefficients up to
+/// `f64::MAX`, `M` overflows at any `|x| > 1`, so no tier could certify a sign and every such
+/// query went to exact Sturm isolation, seconds to minutes at degree 33 (issue 13 follow-up).
+enum Mag {
+    F64(f64),
+    Wide(BigFloat),
+}
+
+/// [`Mag`] of `c` at `r ≥ 0` for a tier whose exponent range is unbounded (`wide`) or not,
+/// with `Σ rⁱ` (`f64`, possibly infinite) for the underflow terms; `None` when it overflows
+/// `f64` and the tier is not wide.
+fn magnitude(c: &[f64], r: f64, wide: bool) -> Option<(Mag, f64)> {
+    let (s, z) = abs_weights(c, r);
+    if s.is_finite() {
+        return Some((Mag::F64(s), z));
+    }
+    if !wide || !r.is_finite() {
+        return None;
+    }
+    // Horner's rule on non-negative numbers, every operation rounded up: an upper bound.
+    let up = RoundingMode::Up;
+    let x = big_from_f64(r);
+    let m = c.iter().rev().fold(big_from_f64(0.0), |acc, ci| {
+        acc.mul(&x, 128, up).add(&big_from_f64(ci.abs()), 128, up)
+    });
+    Some((Mag::Wide(m), z))
+}
+
 // ---------------------------------------------------------------------------------------
 // Certified point signs.
 
@@ -236,13 +278,17 @@ fn horner_sign<A: Arith>(ar: &A, c: &[f64], x: f64) -> i8 {
     for &ci in c[..n].iter().rev() {
         v = ar.add_f(&ar.mul_f(&v, x), ci);
     }
-    let (s, z) = abs_weights(c, x.abs());
-    if !s.is_finite() {
+    let Some((s, z)) = magnitude(c, x.abs(), A::WIDE_RANGE) else {
         return 0;
-    }
+    };
     // Underflow errors are amplified by at most |x| per later step: Σ|x|ⁱ per operation.
-    let tiny = 2.0 * ar.underflow() * z;
-    ar.sign_beyond(&v, 2 * n, s, tiny)
+    // (A wide tier has no underflow; its `z` may be infinite and is then not used.)
+    let tiny = if A::WIDE_RANGE {
+        0.0
+    } else {
+        2.0 * ar.underflow() * z
+    };
+    ar.sign_beyond(&v, 2 * n, &s, 1.0, tiny)
 }
 
 /// [`point_sign`] from double-double up, as the sign function of [`DdBernstein`].
@@ -318,10 +364,9 @@ fn classify<A: Arith>(
     let (wh, wl) = two_sum(other, -a);
     let w = ar.exact_pair(wh, wl);
     let r = a.abs().max(other.abs());
-    let (mag, zr) = abs_weights(c, r);
-    if !mag.is_finite() {
+    let Some((mag, zr)) = magnitude(c, r, A::WIDE_RANGE) else {
         return Class::Hopeless;
-    }
+    };
     q.clear();
     q.push(ar.exact_f64(c[n]));
     q.resize(n + 1, ar.exact_f64(0.0));
@@ -350,7 +395,11 @@ fn classify<A: Arith>(
     // Underflow: each operation may add `η`; a later Horner step multiplies such an error by
     // at most |a| + |w| = r, the basis change by at most C(n, i) ≤ 2ⁿ; at most (n + 1)²
     // operations feed each output.
-    let tiny = ar.underflow() * zr * 2f64.powi(n as i32) * ((n + 1) * (n + 1)) as f64;
+    let tiny = if A::WIDE_RANGE {
+        0.0
+    } else {
+        ar.underflow() * zr * 2f64.powi(n as i32) * ((n + 1) * (n + 1)) as f64
+    };
     let mut binom = 1.0f64;
     let mut prev = s_a;
     let mut changes = 0u32;
@@ -358,7 +407,7 @@ fn classify<A: Arith>(
     for (i, bi) in b.iter().enumerate().take(n).skip(1) {
         // C(n, i) from C(n, i − 1), rounded up (exact while it fits 53 bits).
         binom = (binom * (n - i + 1) as f64 / i as f64) * (1.0 + 2.0 * f64::EPSILON);
-        let s = ar.sign_beyond(bi, k, mag * binom, tiny);
+        let s = ar.sign_beyond(bi, k, &mag, binom, tiny);
         if s == 0 {
             undecided += 1;
             continue;
