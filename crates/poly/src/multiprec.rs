@@ -610,7 +610,7 @@ impl<'c> PieceIsolator<'c> {
 /// midpoint, else one of [`SPLIT_FRACTIONS`]. `None` when no such `f64` point exists or none
 /// is decided at [`MAX_BITS`].
 fn split_point(c: &[f64], x: f64, y: f64, tier: Tier) -> Option<(f64, i8, Tier)> {
-    let mid = 0.5 * x + 0.5 * y;
+    let mid = binade_mid(x, y).unwrap_or(0.5 * x + 0.5 * y);
     std::iter::once(mid)
         .chain(SPLIT_FRACTIONS.iter().map(|f| x + (y - x) * f))
         .filter(|&m| m > x && m < y)
@@ -618,6 +618,37 @@ fn split_point(c: &[f64], x: f64, y: f64, tier: Tier) -> Option<(f64, i8, Tier)>
             let (s, t) = point_sign(c, m, tier);
             (s != 0).then_some((m, s, t))
         })
+}
+
+/// Binades (powers of two) an interval on one side of 0 must span before it is split at the
+/// geometric rather than the arithmetic midpoint.
+const WIDE_SPAN_BINADES: i32 = 8;
+
+/// For a node on one side of 0 spanning more than [`WIDE_SPAN_BINADES`] binades, the power of
+/// two halfway between their exponents (from the smallest subnormal when an end is 0). Why:
+/// arithmetic halving of `(0, 1e300]` needs about a thousand levels to reach a root near 1,
+/// far past [`MAX_DEPTH`], so such nodes were left to exact isolation (seconds per query at
+/// degree 33, issue 13 follow-up); halving the exponent range needs about 11.
+fn binade_mid(x: f64, y: f64) -> Option<f64> {
+    let (lo, hi, sign) = if x >= 0.0 {
+        (x, y, 1.0)
+    } else if y <= 0.0 {
+        (-y, -x, -1.0)
+    } else {
+        return None;
+    };
+    let exponent = |v: f64| v.max(f64::from_bits(1)).log2().floor() as i32;
+    let (e_lo, e_hi) = (exponent(lo), exponent(hi));
+    if e_hi - e_lo <= WIDE_SPAN_BINADES {
+        return None;
+    }
+    let e = e_lo + (e_hi - e_lo) / 2;
+    let m = if e >= -1022 {
+        f64::from_bits(((e + 1023) as u64) << 52)
+    } else {
+        f64::from_bits(1u64 << (e + 1074))
+    };
+    (m > lo && m < hi).then_some(sign * m)
 }
 
 // ---------------------------------------------------------------------------------------
