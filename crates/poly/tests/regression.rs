@@ -426,3 +426,115 @@ fn bernstein_matches_the_oracle_for_leading_coefficients_of_every_binade() {
 fn leading_coefficients_of_every_binade_long() {
     check_against_oracle(&leading_binade_cases(1074, 400));
 }
+
+/// Found by `tests/fuzz_coeffs.rs` (issue 13 follow-up): a degree-33 polynomial with
+/// coefficients from 1e-241 to ±`f64::MAX` took 287 s in a debug build. `Σ|cᵢ||x|ⁱ`
+/// overflows `f64` at any `|x| > 1`, so no precision tier could certify a sign and every
+/// query went to exact Sturm isolation with 2000-bit coefficients. Now the wide tier bounds
+/// its error with a wide magnitude, wide nodes are split by binades, and the query needs no
+/// exact isolation (milliseconds in release). The roots are checked by exact signs (the full
+/// oracle takes seconds here): a sign change around each, and exactly one between the range
+/// ends and the midpoints of consecutive roots.
+#[test]
+fn degree_33_with_coefficients_up_to_f64_max_needs_no_exact_isolation() {
+    let p = Poly::new(vec![
+        1.9312036186970971,
+        4.212204473622174,
+        -9.449382490913273,
+        -4.739294522334574e-241,
+        7.285382028314619e-30,
+        1.7976931348623157e308,
+        -3.1263177745904214,
+        -9.726049145993532,
+        0.5104994256342934,
+        -9.521347432860852,
+        0.0,
+        2.8091062566231512e138,
+        -1.6950998538014481,
+        2.6504542126842914,
+        -5.815576822686644e239,
+        4.590242120151142,
+        -5.463419634685693,
+        8.146455276736898,
+        -1.7976931348623157e308,
+        0.0,
+        6.5889179034559575,
+        -1.0596260330007162e89,
+        0.0,
+        -1.58976723097339,
+        -4.909406000506555,
+        -9.638822910956634,
+        -3.0,
+        0.0,
+        9.669930339423878,
+        -7.7502218450398574,
+        -2.0567624881166635,
+        4.508787951804276,
+        -3.0,
+        -9.235041833352069,
+    ]);
+    assert_eq!(p.degree(), 33, "the fuzzer's degree");
+    let q = p.to_rat().unwrap();
+    let sign = |x: f64| {
+        q.eval(&rat_from_f64(x).unwrap())
+            .cmp(&Rat::from_integer(0.into())) as i8
+    };
+    for (lo, hi) in [(-10.0, 10.0), (-1e300, 1e300)] {
+        let mut stats = RootStats::default();
+        let got = p.real_roots_with(lo, hi, &with(IsolationMethod::Bernstein, 0.0), &mut stats);
+        let got = got.unwrap();
+        assert_eq!(stats.exact_fallbacks, 0, "on ({lo:e}, {hi:e}]: {stats:?}");
+        assert!(!got.is_empty(), "odd degree: a real root");
+        for r in &got {
+            let (a, b) = (r.next_down().next_down(), r.next_up().next_up());
+            assert!(sign(a) * sign(b) <= 0, "no sign change around {r:e}");
+        }
+        let mut points = vec![lo];
+        points.extend(got.windows(2).map(|w| 0.5 * (w[0] + w[1])));
+        points.push(hi);
+        for w in points.windows(2) {
+            assert_eq!(
+                sign(w[0]) * sign(w[1]),
+                -1,
+                "one root in ({:e}, {:e}]",
+                w[0],
+                w[1]
+            );
+        }
+    }
+}
+
+/// Found by `tests/fuzz_coeffs.rs` (issue 13 follow-up): for `6.61x³ − 2.45x² − 3.04x −
+/// f64::MAX` on `(0, ∞]` the Sturm method's smallest root was `2.72e307` (Cauchy's bound,
+/// the end of its range) while its all-roots query said `4.77e102` (the root is
+/// `3.007e102`). Its interval's end `hi` had no certified sign because `p(hi)` overflows, and
+/// that was taken as "within rounding of zero", so `hi` came back as a root. Now an
+/// overflowed sign leaves the interval unresolved (a typed error). The certified methods
+/// give the oracle's root; the heuristic ones never return the range end, and where both
+/// their queries answer, they agree.
+#[test]
+fn overflowing_end_value_was_taken_for_a_root() {
+    let p = Poly::new(vec![
+        -1.7976931348623157e308,
+        -3.0385373386504,
+        -2.4467867094206452,
+        6.6088850613192065,
+    ]);
+    let want = oracle(&p, 0.0, f64::MAX);
+    assert_eq!(want.len(), 1, "one positive root: {want:?}");
+    for method in CERTIFIED.into_iter().chain(HEURISTIC) {
+        let o = with(method, 0.0);
+        let all = p.real_roots_with(0.0, f64::INFINITY, &o, &mut RootStats::default());
+        let first = p.try_smallest_root(0.0, f64::INFINITY, &o, &mut RootStats::default());
+        if CERTIFIED.contains(&method) {
+            assert_roots_match(&all.clone().unwrap(), &want, 0.0, &format!("{method:?}"));
+        }
+        if let Ok(Some(f)) = first {
+            assert!(f < 1e300, "{method:?}: the range end {f:e} is not a root");
+            if let Ok(all) = &all {
+                let what = format!("{method:?}: all {all:?}, first {f:e}");
+                assert_roots_match(&[f], &all[..1], 0.0, &what);
+            }
+        }
+    }
+}
