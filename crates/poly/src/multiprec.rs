@@ -533,7 +533,7 @@ impl<'c> PieceIsolator<'c> {
                         // segment's distance from 0 (as the f64 path's restarts do), up to
                         // SEGMENT_HALVINGS times; then the per-node tiers take the rest.
                         let split = (halvings < SEGMENT_HALVINGS && t_a < y)
-                            .then(|| split_point(self.c, t_a, y, Tier::Dd))
+                            .then(|| split_point(self.c, t_a, y, Tier::Dd, 0))
                             .flatten();
                         match split {
                             Some((m, s_m, _)) => {
@@ -591,7 +591,7 @@ impl<'c> PieceIsolator<'c> {
                 },
                 Class::Split => {
                     stats.subdivisions += 1;
-                    match split_point(c, x, y, tier) {
+                    match split_point(c, x, y, tier, depth) {
                         Some((m, s_m, t_m)) => {
                             let t = tier.max(t_m);
                             self.stack.push((m, y, s_m, s_y, t, depth + 1));
@@ -609,8 +609,8 @@ impl<'c> PieceIsolator<'c> {
 /// A point strictly inside `(x, y)` with a certified sign at some tier from `tier` up: the
 /// midpoint, else one of [`SPLIT_FRACTIONS`]. `None` when no such `f64` point exists or none
 /// is decided at [`MAX_BITS`].
-fn split_point(c: &[f64], x: f64, y: f64, tier: Tier) -> Option<(f64, i8, Tier)> {
-    let mid = binade_mid(x, y).unwrap_or(0.5 * x + 0.5 * y);
+fn split_point(c: &[f64], x: f64, y: f64, tier: Tier, depth: u32) -> Option<(f64, i8, Tier)> {
+    let mid = binade_mid(x, y, depth).unwrap_or(0.5 * x + 0.5 * y);
     std::iter::once(mid)
         .chain(SPLIT_FRACTIONS.iter().map(|f| x + (y - x) * f))
         .filter(|&m| m > x && m < y)
@@ -620,16 +620,28 @@ fn split_point(c: &[f64], x: f64, y: f64, tier: Tier) -> Option<(f64, i8, Tier)>
         })
 }
 
-/// Binades (powers of two) an interval on one side of 0 must span before it is split at the
-/// geometric rather than the arithmetic midpoint.
+/// Binades (powers of two) a node `(x, y]` with `0 < x < y` must span before it is split at
+/// the geometric rather than the arithmetic midpoint.
 const WIDE_SPAN_BINADES: i32 = 8;
 
-/// For a node on one side of 0 spanning more than [`WIDE_SPAN_BINADES`] binades, the power of
-/// two halfway between their exponents (from the smallest subnormal when an end is 0). Why:
+/// The binade of `y` above which a node `(0, y]` is split at `2^(e/2)` (`e` the exponent of
+/// `y`) rather than at `y/2`. Nodes from 0 to a moderate `y` — the tracer's and the usual
+/// queries' — keep the arithmetic midpoint until [`DEEP_FROM_ZERO`] halvings: a geometric
+/// one at once would first descend towards `2^-1074` (it cost the planted bench 60 % more
+/// instructions when tried).
+const WIDE_FROM_ZERO_BINADE: i32 = 64;
+
+/// Bisection depth from which a node `(0, y]` is split at the geometric midpoint of
+/// `2^-1074` and `y`: a root far below `y` (`1e-62` in `(0, 10]`) is then reached in about
+/// ten more levels instead of two hundred (past [`MAX_DEPTH`]).
+const DEEP_FROM_ZERO: u32 = 16;
+
+/// For a very wide node on one side of 0 (see [`WIDE_SPAN_BINADES`] and
+/// [`WIDE_FROM_ZERO_BINADE`]), a power of two halfway between the exponents of its ends. Why:
 /// arithmetic halving of `(0, 1e300]` needs about a thousand levels to reach a root near 1,
 /// far past [`MAX_DEPTH`], so such nodes were left to exact isolation (seconds per query at
-/// degree 33, issue 13 follow-up); halving the exponent range needs about 11.
-fn binade_mid(x: f64, y: f64) -> Option<f64> {
+/// degree 33, issue 13 follow-up); halving the exponent range needs about ten.
+fn binade_mid(x: f64, y: f64, depth: u32) -> Option<f64> {
     let (lo, hi, sign) = if x >= 0.0 {
         (x, y, 1.0)
     } else if y <= 0.0 {
@@ -637,12 +649,23 @@ fn binade_mid(x: f64, y: f64) -> Option<f64> {
     } else {
         return None;
     };
-    let exponent = |v: f64| v.max(f64::from_bits(1)).log2().floor() as i32;
-    let (e_lo, e_hi) = (exponent(lo), exponent(hi));
-    if e_hi - e_lo <= WIDE_SPAN_BINADES {
-        return None;
-    }
-    let e = e_lo + (e_hi - e_lo) / 2;
+    let exponent = |v: f64| v.log2().floor() as i32;
+    let e_hi = exponent(hi);
+    let e = if lo == 0.0 {
+        if e_hi > WIDE_FROM_ZERO_BINADE {
+            e_hi / 2
+        } else if depth >= DEEP_FROM_ZERO {
+            (e_hi - 1074) / 2
+        } else {
+            return None;
+        }
+    } else {
+        let e_lo = exponent(lo);
+        if e_hi - e_lo <= WIDE_SPAN_BINADES {
+            return None;
+        }
+        e_lo + (e_hi - e_lo) / 2
+    };
     let m = if e >= -1022 {
         f64::from_bits(((e + 1023) as u64) << 52)
     } else {
@@ -677,7 +700,7 @@ pub(crate) fn refine_wide(c: &[f64], b: Bracket, x_tol: f64, stats: &mut RootSta
             let m = lo + 0.5 * (hi - lo);
             return Some(if m > lo && m < hi { m } else { lo });
         }
-        let Some((m, s, t)) = split_point(c, lo, hi, tier) else {
+        let Some((m, s, t)) = split_point(c, lo, hi, tier, 0) else {
             // No point is signed even at MAX_BITS: the midpoint may be the root itself (a
             // stored polynomial with an exact f64 root, as Vieta's products of f64 roots
             // have). One exact evaluation there (n rational operations, no Sturm sequence)
