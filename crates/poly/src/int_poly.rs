@@ -93,18 +93,19 @@ impl IntPoly {
         IntPoly::trimmed(c).primitive()
     }
 
-    /// A positive multiple of `−rem(self, d)` with coprime integer coefficients: the next
-    /// member of a Sturm sequence (seed eq. 3.20, `V_k = Q_{k−1}·V_{k−1} − V_{k−2}` up to a
-    /// positive factor). `d` must be non-zero.
+    /// `±prem(self, d)`, the sign chosen to make it a positive multiple of `−rem(self, d)`:
+    /// the next member of a Sturm sequence (seed eq. 3.20, `V_k = Q_{k−1}·V_{k−1} − V_{k−2}`
+    /// up to a positive factor), not reduced (the caller divides by the subresultant
+    /// factor). `d` must be non-zero.
     ///
     /// The pseudo-remainder `r = lc(d)^(m−n+1)·self mod d` differs from the true remainder by
     /// the factor `lc(d)^(m−n+1)`, whose sign is corrected so the result keeps the sign of
     /// `−rem`.
-    pub(crate) fn neg_rem(&self, d: &IntPoly) -> Self {
+    pub(crate) fn neg_prem(&self, d: &IntPoly) -> Self {
         let n = d.degree();
         let lc = d.c.last().expect("divisor is non-zero");
         if self.is_zero() || self.degree() < n {
-            return IntPoly::trimmed(self.c.iter().map(|x| -x).collect()).primitive();
+            return IntPoly::trimmed(self.c.iter().map(|x| -x).collect());
         }
         let mut r = self.c.clone();
         let steps = self.degree() - n + 1;
@@ -132,7 +133,24 @@ impl IntPoly {
         } else {
             r.into_iter().map(|x| -x).collect()
         };
-        IntPoly::trimmed(r).primitive()
+        IntPoly::trimmed(r)
+    }
+
+    /// Divides every coefficient by the positive `b`, which must divide each exactly.
+    pub(crate) fn div_scalar_exact(mut self, b: &BigInt) -> Self {
+        debug_assert!(b.is_positive(), "a positive divisor keeps the signs");
+        if !b.is_one() {
+            for x in &mut self.c {
+                debug_assert!((&*x % b).is_zero(), "{b} divides every coefficient");
+                *x /= b;
+            }
+        }
+        self
+    }
+
+    /// `|lc|`, the magnitude of the leading coefficient (0 for the zero polynomial).
+    pub(crate) fn lc_abs(&self) -> BigInt {
+        self.c.last().map_or_else(BigInt::zero, Signed::abs)
     }
 
     /// Exact quotient by `g`, assumed to divide `self`, rescaled by a positive constant to
@@ -246,7 +264,7 @@ mod tests {
         // Leading coefficient of the divisor negative, odd number of steps: sign must flip.
         let a = ip(&[1, 0, 3, 2]);
         let d = ip(&[5, 1, -3]);
-        let got = a.neg_rem(&d).to_qpoly();
+        let got = a.neg_prem(&d).to_qpoly();
         let (_, r) = a.to_qpoly().div_rem(&d.to_qpoly()).unwrap();
         let minus_r = -r;
         // got = k·(−r) with k > 0: compare after making both monic and checking a sign.

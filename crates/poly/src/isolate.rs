@@ -71,7 +71,8 @@ fn prepare(p: &Poly<f64>, t_min: f64, t_max: f64, opts: &RootOptions) -> Result<
     let inv_lc = 1.0 / c[n].abs();
     let cauchy = c[..n].iter().fold(0.0f64, |m, x| m.max(x.abs() * inv_lc));
     let cauchy = (1.0 + cauchy) * ROOT_BOUND_MARGIN;
-    if !(lo >= -cauchy && hi <= cauchy)
+    // An infinite Cauchy bound (a quotient overflowed) bounds nothing: `root_bound` may.
+    if !(cauchy.is_finite() && lo >= -cauchy && hi <= cauchy)
         && let Some(b) = p.root_bound()
     {
         // Every real root is in [−B, B]: the open end moves just below −B.
@@ -154,7 +155,9 @@ fn cauchy_narrowed(p: &Poly<f64>, lo: f64, hi: f64) -> (f64, f64) {
     if lo.is_finite() && hi.is_finite() {
         return (lo, hi);
     }
-    let Some(b) = p.cauchy_bound() else {
+    let Some(b) = p.cauchy_bound().filter(|b| b.is_finite()) else {
+        // No bound, or one that overflowed: `prepare` narrows with `root_bound` (the
+        // all-roots queries do the same, so both answer on the same range).
         return (lo, hi);
     };
     let b = b * CAUCHY_ROUNDING_MARGIN;
@@ -782,8 +785,8 @@ fn sturm_smallest(
 
 /// Refines a heuristic interval `(lo, hi]`. With certified opposite end signs it is a
 /// certified bracket, refined as the certified path refines one (with an exact finish when
-/// `f64` stalls); a certified-zero-free `lo` and an undecidable `hi` give `hi` (the stored
-/// polynomial is within rounding of zero there). Otherwise the counts promised a root that no
+/// `f64` stalls); a certified-zero-free `lo` and an undecidable `hi` give `hi` when the
+/// stored polynomial is within rounding of zero there (a finite error bound). Otherwise the counts promised a root that no
 /// sign change confirms (a wrong count, or a root of even multiplicity): the interval is
 /// reported as [`RootError::Unresolved`], never its midpoint as a root (issue 11: roots 1e6
 /// and 1e9 came back as 878 417.97 and 887 500 000).
@@ -799,7 +802,10 @@ fn refine_heuristic(
     if s_lo != 0 && s_hi == -s_lo {
         let b = Bracket::new(lo, hi, s_lo);
         Ok(refine_certified(p, b, opts.tolerance(), opts.refine, stats))
-    } else if s_hi == 0 && s_lo != 0 {
+    } else if s_hi == 0 && s_lo != 0 && p.eval_with_error(hi).err.is_finite() {
+        // Undecided because `p(hi)` is within rounding of zero — not because the bound
+        // overflowed: `6.61x³ − … − f64::MAX` got the Cauchy bound 2.72e307 as a root
+        // (issue 13 follow-up).
         Ok(hi)
     } else {
         Err(RootError::Unresolved { lo, hi })

@@ -29,7 +29,7 @@ use smallvec::SmallVec;
 use crate::bernstein::Bracket;
 use crate::dd_bernstein::{DdBernstein, DdOutcome};
 use crate::double_double::{DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, two_sum};
-use crate::eval_bound::{abs_weights, certified_sign, gamma_ratio_upper};
+use crate::eval_bound::{abs_weights, certified_sign};
 use crate::scalar::rat_from_f64;
 use crate::stats::RootStats;
 use crate::univariate::Poly;
@@ -95,16 +95,14 @@ trait Arith {
     fn add_f(&self, x: &Self::T, y: f64) -> Self::T;
     fn mul(&self, x: &Self::T, y: &Self::T) -> Self::T;
     fn mul_f(&self, x: &Self::T, y: f64) -> Self::T;
-    /// The sign of the exact value of `x` when `|x|` exceeds `γ(k)·s₀·s₁·2^e + tiny` (the
-    /// program's bound; `scale = (s₀, s₁, e)`, `s₀, s₁ ≥ 0` finite and computed rounded up),
-    /// else 0. The scale comes in factors because at high degree it can exceed `f64`'s
-    /// range (`C(160, 80)·Σ|cᵢ||x|ⁱ` at `|x| = 44`; `Σ|cᵢ||x|ⁱ` itself at `|x| = 256`)
-    /// where the wide format's cannot.
-    fn sign_beyond(&self, x: &Self::T, k: usize, scale: (f64, f64, i32), tiny: f64) -> i8;
+    /// Whether the tier's exponent range is unbounded, so that it can use a [`Mag::Wide`]
+    /// magnitude (one that overflows `f64`).
+    const WIDE_RANGE: bool;
+    /// The sign of the exact value of `x` when `|x|` exceeds `γ(k)·mag·mult + tiny` (the
+    /// program's bound; `mag` and `mult ≥ 0` computed rounded up), else 0.
+    fn sign_beyond(&self, x: &Self::T, k: usize, mag: &Mag, mult: f64, tiny: f64) -> i8;
     /// The absolute underflow error of one operation (0 without underflow).
     fn underflow(&self) -> f64;
-    /// Whether values and bounds share `f64`'s exponent range (they overflow with it).
-    fn has_f64_range(&self) -> bool;
 }
 
 struct DdArith;
@@ -129,11 +127,12 @@ impl Arith for DdArith {
     fn mul_f(&self, x: &Dd, y: f64) -> Dd {
         x.mul_f(y)
     }
-    fn sign_beyond(&self, x: &Dd, k: usize, (s0, s1, e): (f64, f64, i32), tiny: f64) -> i8 {
-        if e != 0 {
+    const WIDE_RANGE: bool = false;
+    fn sign_beyond(&self, x: &Dd, k: usize, mag: &Mag, mult: f64, tiny: f64) -> i8 {
+        let Mag::F64(scale) = mag else {
             return 0;
-        }
-        let bound = gamma_u(k, DD_UNIT) * s0 * s1 * (1.0 + 8.0 * f64::EPSILON) + tiny;
+        };
+        let bound = gamma_u(k, DD_UNIT) * (scale * mult) * (1.0 + 4.0 * f64::EPSILON) + tiny;
         if bound.is_finite() {
             x.sign_beyond(bound)
         } else {
@@ -142,9 +141,6 @@ impl Arith for DdArith {
     }
     fn underflow(&self) -> f64 {
         DD_UNDERFLOW
-    }
-    fn has_f64_range(&self) -> bool {
-        true
     }
 }
 
@@ -157,10 +153,6 @@ struct BigArith {
 /// most `2098`, plus 53 bits of mantissa and a carry.
 const EXACT_PAIR_BITS: usize = 2176;
 
-/// Precision that holds any product of two `f64` numbers exactly (2 × 53 bits, in whole
-/// 64-bit words).
-const EXACT_PRODUCT_BITS: usize = 128;
-
 impl BigArith {
     /// The unit roundoff: `astro_float` rounds the exact result to `bits` bits (rounded up to
     /// whole 64-bit words); `2^(1 − bits)` is a bound even for a faithful rounding.
@@ -171,46 +163,63 @@ impl BigArith {
 
 const RM: RoundingMode = RoundingMode::ToEven;
 
+/// `2^64`: scales any subnormal `f64` (at least `2^-1074`) into the normal range exactly.
+const SUBNORMAL_LIFT: f64 = 18_446_744_073_709_551_616.0;
+
+/// `x` as a [`BigFloat`], exactly. Why not `BigFloat::from_f64` alone: in astro-float 0.9.6
+/// it converts a subnormal to *half* its value (the exponent of a subnormal is taken as
+/// `−1023` instead of `−1022`), which made the certified path return roots of
+/// `1.877e-308·x² − 3.83` that were `√2` too large (issue 13 follow-up). A subnormal is
+/// therefore converted as the normal `x·2^64` (exact) with its exponent lowered by 64.
+fn big_from_f64(x: f64) -> BigFloat {
+    if !x.is_subnormal() {
+        return BigFloat::from_f64(x, 64);
+    }
+    let mut b = BigFloat::from_f64(x * SUBNORMAL_LIFT, 64);
+    if let Some(e) = b.exponent() {
+        b.set_exponent(e - 64);
+    }
+    b
+}
+
 impl Arith for BigArith {
     type T = BigFloat;
     fn exact_f64(&self, x: f64) -> BigFloat {
-        BigFloat::from_f64(x, 64)
+        big_from_f64(x)
     }
     fn exact_pair(&self, hi: f64, lo: f64) -> BigFloat {
-        BigFloat::from_f64(hi, 64).add(&BigFloat::from_f64(lo, 64), EXACT_PAIR_BITS, RM)
+        big_from_f64(hi).add(&big_from_f64(lo), EXACT_PAIR_BITS, RM)
     }
     fn add(&self, x: &BigFloat, y: &BigFloat) -> BigFloat {
         x.add(y, self.bits, RM)
     }
     fn add_f(&self, x: &BigFloat, y: f64) -> BigFloat {
-        x.add(&BigFloat::from_f64(y, 64), self.bits, RM)
+        x.add(&big_from_f64(y), self.bits, RM)
     }
     fn mul(&self, x: &BigFloat, y: &BigFloat) -> BigFloat {
         x.mul(y, self.bits, RM)
     }
     fn mul_f(&self, x: &BigFloat, y: f64) -> BigFloat {
-        x.mul(&BigFloat::from_f64(y, 64), self.bits, RM)
+        x.mul(&big_from_f64(y), self.bits, RM)
     }
-    fn sign_beyond(&self, x: &BigFloat, k: usize, (s0, s1, e2): (f64, f64, i32), _tiny: f64) -> i8 {
+    const WIDE_RANGE: bool = true;
+    fn sign_beyond(&self, x: &BigFloat, k: usize, mag: &Mag, mult: f64, _tiny: f64) -> i8 {
         if x.is_nan() || x.is_inf() {
             return 0;
         }
-        // γ(k)·scale ≤ 2k·u·scale for k·u ≤ 1/2: the bound is formed in the wide format (u
-        // far below f64's range), rounded up.
+        // γ(k)·mag·mult ≤ 2k·u·mag·mult for k·u ≤ 1/2: the bound is formed in the wide
+        // format (u far below f64's range, and mag possibly beyond it), rounded up.
         let u = self.unit();
         if (k as f64) * u >= 0.5 {
             return 0;
         }
-        // s₀ times the rounded-up `s₁·2k`: a product of two 53-bit mantissas, exact at
-        // `EXACT_PRODUCT_BITS` and free of `f64`'s exponent range.
-        let s1k = s1 * (2.0 * k as f64) * (1.0 + 4.0 * f64::EPSILON);
-        if !s1k.is_finite() {
-            return 0;
-        }
-        let mut bound =
-            BigFloat::from_f64(s0, 64).mul(&BigFloat::from_f64(s1k, 64), EXACT_PRODUCT_BITS, RM);
+        let factor = big_from_f64(mult * (2.0 * k as f64) * (1.0 + 4.0 * f64::EPSILON));
+        let mut bound = match mag {
+            Mag::F64(scale) => big_from_f64(*scale).mul(&factor, 128, RoundingMode::Up),
+            Mag::Wide(scale) => scale.mul(&factor, 128, RoundingMode::Up),
+        };
         if let Some(e) = bound.exponent() {
-            bound.set_exponent(e - (self.bits as i32 - 1) + e2);
+            bound.set_exponent(e - (self.bits as i32 - 1));
         } else if !bound.is_zero() {
             return 0;
         }
@@ -227,9 +236,36 @@ impl Arith for BigArith {
     fn underflow(&self) -> f64 {
         0.0
     }
-    fn has_f64_range(&self) -> bool {
-        false
+}
+
+/// `M = Σ|cᵢ|·rⁱ`, the magnitude in the error bounds, computed rounded up: in `f64`
+/// ([`abs_weights`]), or, when that overflows and the tier has an unbounded exponent range,
+/// as a [`BigFloat`] rounded up at every step. Why the wide form: with coefficients up to
+/// `f64::MAX`, `M` overflows at any `|x| > 1`, so no tier could certify a sign and every such
+/// query went to exact Sturm isolation, seconds to minutes at degree 33 (issue 13 follow-up).
+enum Mag {
+    F64(f64),
+    Wide(BigFloat),
+}
+
+/// [`Mag`] of `c` at `r ≥ 0` for a tier whose exponent range is unbounded (`wide`) or not,
+/// with `Σ rⁱ` (`f64`, possibly infinite) for the underflow terms; `None` when it overflows
+/// `f64` and the tier is not wide.
+fn magnitude(c: &[f64], r: f64, wide: bool) -> Option<(Mag, f64)> {
+    let (s, z) = abs_weights(c, r);
+    if s.is_finite() {
+        return Some((Mag::F64(s), z));
     }
+    if !wide || !r.is_finite() {
+        return None;
+    }
+    // Horner's rule on non-negative numbers, every operation rounded up: an upper bound.
+    let up = RoundingMode::Up;
+    let x = big_from_f64(r);
+    let m = c.iter().rev().fold(big_from_f64(0.0), |acc, ci| {
+        acc.mul(&x, 128, up).add(&big_from_f64(ci.abs()), 128, up)
+    });
+    Some((Mag::Wide(m), z))
 }
 
 // ---------------------------------------------------------------------------------------
@@ -242,16 +278,17 @@ fn horner_sign<A: Arith>(ar: &A, c: &[f64], x: f64) -> i8 {
     for &ci in c[..n].iter().rev() {
         v = ar.add_f(&ar.mul_f(&v, x), ci);
     }
-    let Some((s, e, z)) = weights_at(ar, c, x.abs()) else {
+    let Some((s, z)) = magnitude(c, x.abs(), A::WIDE_RANGE) else {
         return 0;
     };
     // Underflow errors are amplified by at most |x| per later step: Σ|x|ⁱ per operation.
-    let tiny = if e == 0 {
-        2.0 * ar.underflow() * z
-    } else {
+    // (A wide tier has no underflow; its `z` may be infinite and is then not used.)
+    let tiny = if A::WIDE_RANGE {
         0.0
+    } else {
+        2.0 * ar.underflow() * z
     };
-    ar.sign_beyond(&v, 2 * n, (s, 1.0, e), tiny)
+    ar.sign_beyond(&v, 2 * n, &s, 1.0, tiny)
 }
 
 /// [`point_sign`] from double-double up, as the sign function of [`DdBernstein`].
@@ -283,57 +320,6 @@ pub(crate) fn point_sign(c: &[f64], x: f64, from: Tier) -> (i8, Tier) {
 
 // ---------------------------------------------------------------------------------------
 // Bernstein coefficients of one node.
-
-/// The scale `Σ|cᵢ|·rⁱ ≤ m·2^e` of a tier's bounds at radius `r`, as `(m, e, Σ rⁱ)`: `e = 0`
-/// and the sums of [`abs_weights`] where they fit `f64`; else, for a tier without `f64`'s
-/// exponent range, [`scaled_abs_weight`] (and no `Σ rⁱ`: such tiers have no underflow).
-/// `None` when the tier cannot bound `p` at `r`.
-fn weights_at<A: Arith>(ar: &A, c: &[f64], r: f64) -> Option<(f64, i32, f64)> {
-    let (m, z) = abs_weights(c, r);
-    if m.is_finite() {
-        return Some((m, 0, z));
-    }
-    if ar.has_f64_range() {
-        return None;
-    }
-    let (m, e) = scaled_abs_weight(c, r);
-    m.is_finite().then_some((m, e, 0.0))
-}
-
-/// Where a scaled Horner sum is renormalised: `2^RENORM_BITS` leaves room for one more
-/// multiplication by any `r < 2^400`.
-const RENORM_BITS: i32 = 600;
-
-/// `Σ|cᵢ|·rⁱ ≤ m·2^e`, rounded up, for `r` whose powers leave `f64`'s range: Horner's rule
-/// on non-negative numbers, the sum multiplied by `2^-RENORM_BITS` (exactly) whenever it
-/// passes `2^RENORM_BITS`, and each later coefficient by `2^-e` — exact while the result is
-/// a normal number; below that the smallest normal number is added instead, which keeps an
-/// upper bound. `m` is infinite when `r` is too large even so.
-fn scaled_abs_weight(c: &[f64], r: f64) -> (f64, i32) {
-    let r = r * (1.0 + 2.0 * f64::EPSILON);
-    let renorm = 2f64.powi(-RENORM_BITS);
-    let (mut s, mut e) = (0.0f64, 0i32);
-    for &ci in c.iter().rev() {
-        s *= r;
-        if !s.is_finite() {
-            // `r` beyond `2^400`: no renormalisation can follow it (and `∞·2^-600` would
-            // loop forever).
-            return (f64::INFINITY, e);
-        }
-        while s > 1.0 / renorm {
-            s *= renorm;
-            e += RENORM_BITS;
-        }
-        let scaled = ci.abs() * 2f64.powi(-e);
-        s += if ci != 0.0 && scaled < f64::MIN_POSITIVE {
-            f64::MIN_POSITIVE
-        } else {
-            scaled
-        };
-    }
-    let inflate = 1.0 + 2.0 * gamma_ratio_upper(2 * c.len() + 2);
-    (s * inflate, e)
-}
 
 /// `C(n, ⌊n/2⌋)`, the largest binomial coefficient of degree `n`, rounded up (infinite from
 /// `n ≈ 1030`).
@@ -386,13 +372,17 @@ fn classify<A: Arith>(
     let (wh, wl) = two_sum(other, -a);
     let w = ar.exact_pair(wh, wl);
     let r = a.abs().max(other.abs());
-    let Some((mag, mag_exp, zr)) = weights_at(ar, c, r) else {
+    let Some((mag, zr)) = magnitude(c, r, A::WIDE_RANGE) else {
         return Class::Hopeless;
     };
-    // Every shifted and Bernstein value is at most `C(n, i)·mag` in magnitude: where that
+    // Every shifted and Bernstein value is at most `C(n, i)·M` in magnitude: where that
     // leaves `f64`'s range, a tier with that range cannot classify the node at all (its
-    // bounds would be infinite and the node split forever), so it goes up a tier.
-    if ar.has_f64_range() && !(mag * central_binomial(n)).is_finite() {
+    // bounds on the middle coefficients are infinite, so the node would be split until the
+    // node budget sends the piece to exact isolation), so it goes up a tier.
+    if let Mag::F64(m) = mag
+        && !A::WIDE_RANGE
+        && !(m * central_binomial(n)).is_finite()
+    {
         return Class::Hopeless;
     }
     q.clear();
@@ -423,10 +413,10 @@ fn classify<A: Arith>(
     // Underflow: each operation may add `η`; a later Horner step multiplies such an error by
     // at most |a| + |w| = r, the basis change by at most C(n, i) ≤ 2ⁿ; at most (n + 1)²
     // operations feed each output.
-    let tiny = if mag_exp == 0 {
-        ar.underflow() * zr * 2f64.powi(n as i32) * ((n + 1) * (n + 1)) as f64
-    } else {
+    let tiny = if A::WIDE_RANGE {
         0.0
+    } else {
+        ar.underflow() * zr * 2f64.powi(n as i32) * ((n + 1) * (n + 1)) as f64
     };
     let mut binom = 1.0f64;
     let mut prev = s_a;
@@ -435,7 +425,7 @@ fn classify<A: Arith>(
     for (i, bi) in b.iter().enumerate().take(n).skip(1) {
         // C(n, i) from C(n, i − 1), rounded up (exact while it fits 53 bits).
         binom = (binom * (n - i + 1) as f64 / i as f64) * (1.0 + 2.0 * f64::EPSILON);
-        let s = ar.sign_beyond(bi, k, (mag, binom, mag_exp), tiny);
+        let s = ar.sign_beyond(bi, k, &mag, binom, tiny);
         if s == 0 {
             undecided += 1;
             continue;
@@ -561,7 +551,7 @@ impl<'c> PieceIsolator<'c> {
                         // segment's distance from 0 (as the f64 path's restarts do), up to
                         // SEGMENT_HALVINGS times; then the per-node tiers take the rest.
                         let split = (halvings < SEGMENT_HALVINGS && t_a < y)
-                            .then(|| split_point(self.c, t_a, y, Tier::Dd))
+                            .then(|| split_point(self.c, t_a, y, Tier::Dd, 0))
                             .flatten();
                         match split {
                             Some((m, s_m, _)) => {
@@ -619,7 +609,7 @@ impl<'c> PieceIsolator<'c> {
                 },
                 Class::Split => {
                     stats.subdivisions += 1;
-                    match split_point(c, x, y, tier) {
+                    match split_point(c, x, y, tier, depth) {
                         Some((m, s_m, t_m)) => {
                             let t = tier.max(t_m);
                             self.stack.push((m, y, s_m, s_y, t, depth + 1));
@@ -637,8 +627,8 @@ impl<'c> PieceIsolator<'c> {
 /// A point strictly inside `(x, y)` with a certified sign at some tier from `tier` up: the
 /// midpoint, else one of [`SPLIT_FRACTIONS`]. `None` when no such `f64` point exists or none
 /// is decided at [`MAX_BITS`].
-fn split_point(c: &[f64], x: f64, y: f64, tier: Tier) -> Option<(f64, i8, Tier)> {
-    let mid = 0.5 * x + 0.5 * y;
+fn split_point(c: &[f64], x: f64, y: f64, tier: Tier, depth: u32) -> Option<(f64, i8, Tier)> {
+    let mid = binade_mid(x, y, depth).unwrap_or(0.5 * x + 0.5 * y);
     std::iter::once(mid)
         .chain(SPLIT_FRACTIONS.iter().map(|f| x + (y - x) * f))
         .filter(|&m| m > x && m < y)
@@ -646,6 +636,60 @@ fn split_point(c: &[f64], x: f64, y: f64, tier: Tier) -> Option<(f64, i8, Tier)>
             let (s, t) = point_sign(c, m, tier);
             (s != 0).then_some((m, s, t))
         })
+}
+
+/// Binades (powers of two) a node `(x, y]` with `0 < x < y` must span before it is split at
+/// the geometric rather than the arithmetic midpoint.
+const WIDE_SPAN_BINADES: i32 = 8;
+
+/// The binade of `y` above which a node `(0, y]` is split at `2^(e/2)` (`e` the exponent of
+/// `y`) rather than at `y/2`. Nodes from 0 to a moderate `y` — the tracer's and the usual
+/// queries' — keep the arithmetic midpoint until [`DEEP_FROM_ZERO`] halvings: a geometric
+/// one at once would first descend towards `2^-1074` (it cost the planted bench 60 % more
+/// instructions when tried).
+const WIDE_FROM_ZERO_BINADE: i32 = 64;
+
+/// Bisection depth from which a node `(0, y]` is split at the geometric midpoint of
+/// `2^-1074` and `y`: a root far below `y` (`1e-62` in `(0, 10]`) is then reached in about
+/// ten more levels instead of two hundred (past [`MAX_DEPTH`]).
+const DEEP_FROM_ZERO: u32 = 16;
+
+/// For a very wide node on one side of 0 (see [`WIDE_SPAN_BINADES`] and
+/// [`WIDE_FROM_ZERO_BINADE`]), a power of two halfway between the exponents of its ends. Why:
+/// arithmetic halving of `(0, 1e300]` needs about a thousand levels to reach a root near 1,
+/// far past [`MAX_DEPTH`], so such nodes were left to exact isolation (seconds per query at
+/// degree 33, issue 13 follow-up); halving the exponent range needs about ten.
+fn binade_mid(x: f64, y: f64, depth: u32) -> Option<f64> {
+    let (lo, hi, sign) = if x >= 0.0 {
+        (x, y, 1.0)
+    } else if y <= 0.0 {
+        (-y, -x, -1.0)
+    } else {
+        return None;
+    };
+    let exponent = |v: f64| v.log2().floor() as i32;
+    let e_hi = exponent(hi);
+    let e = if lo == 0.0 {
+        if e_hi > WIDE_FROM_ZERO_BINADE {
+            e_hi / 2
+        } else if depth >= DEEP_FROM_ZERO {
+            (e_hi - 1074) / 2
+        } else {
+            return None;
+        }
+    } else {
+        let e_lo = exponent(lo);
+        if e_hi - e_lo <= WIDE_SPAN_BINADES {
+            return None;
+        }
+        e_lo + (e_hi - e_lo) / 2
+    };
+    let m = if e >= -1022 {
+        f64::from_bits(((e + 1023) as u64) << 52)
+    } else {
+        f64::from_bits(1u64 << (e + 1074))
+    };
+    (m > lo && m < hi).then_some(sign * m)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -674,7 +718,7 @@ pub(crate) fn refine_wide(c: &[f64], b: Bracket, x_tol: f64, stats: &mut RootSta
             let m = lo + 0.5 * (hi - lo);
             return Some(if m > lo && m < hi { m } else { lo });
         }
-        let Some((m, s, t)) = split_point(c, lo, hi, tier) else {
+        let Some((m, s, t)) = split_point(c, lo, hi, tier, 0) else {
             // No point is signed even at MAX_BITS: the midpoint may be the root itself (a
             // stored polynomial with an exact f64 root, as Vieta's products of f64 roots
             // have). One exact evaluation there (n rational operations, no Sturm sequence)
@@ -706,6 +750,27 @@ mod tests {
     use crate::scalar::{Rat, rat_from_f64};
     use crate::univariate::Poly;
     use num_traits::Signed;
+
+    /// Issue 13 follow-up: astro-float's `BigFloat::from_f64` halves subnormals, which made
+    /// the certified path return the roots of `1.877e-308·x² − 3.83` `√2` too large. The
+    /// conversion used here is exact: a subnormal times `2^600` (exact in `f64`, a normal
+    /// number) equals its conversion times `2^600` in the wide format.
+    #[test]
+    fn subnormal_f64_converts_to_bigfloat_exactly() {
+        let lift = 2f64.powi(600);
+        for x in [
+            5e-324,
+            -5e-324,
+            1.877_230_785_675_903_7e-308,
+            f64::MIN_POSITIVE.next_down(),
+            -3.1e-320,
+            f64::MIN_POSITIVE,
+            1.5,
+        ] {
+            let wide = big_from_f64(x).mul(&big_from_f64(lift), 256, RM);
+            assert_eq!(wide, big_from_f64(x * lift), "{x:e}·2^600");
+        }
+    }
 
     /// `|computed − exact| ≤ bound` for the double-double operations on awkward operands.
     #[test]
@@ -973,86 +1038,26 @@ mod tests {
         c[0] = -(2f64.powi(872));
         c[160] = 1.0;
         let p = Poly::new(c);
-        let mut stats = RootStats::default();
-        let roots = p
-            .real_roots_with(-64.0, 64.0, &RootOptions::new(1e-12), &mut stats)
-            .unwrap();
-        // 2^(109/20) to 30 digits (mpmath): 43.7132882161406566032393579293.
-        let r = 43.713_288_216_140_66;
-        assert_eq!(roots.len(), 2, "two real roots: {roots:?}");
-        assert!(
-            (roots[0] + r).abs() <= 1e-12 && (roots[1] - r).abs() <= 1e-12,
-            "{roots:?}"
-        );
-        assert_eq!(stats.exact_fallbacks, 0, "no exact sequence: {stats:?}");
-        assert!(
-            stats.multiprecision_pieces > 0,
-            "the wide tiers decided: {stats:?}"
-        );
-    }
-
-    /// Regression (issue 11, degree growth): the same polynomial on `(−256, 256]`, where
-    /// `p(±256) ≈ 2^1280` itself leaves `f64`'s range. No tier could sign the ends (their
-    /// bound `Σ|cᵢ||x|ⁱ` was infinite in `f64`), so the whole range went to exact Sturm
-    /// (planted roots of degree 160 on such a range: 9–19 s). The wide tiers now take that
-    /// bound with an exponent of its own.
-    #[test]
-    fn degree_160_range_whose_end_values_overflow_stays_off_the_exact_path() {
-        let mut c = vec![0.0; 161];
-        c[0] = -(2f64.powi(872));
-        c[160] = 1.0;
-        let p = Poly::new(c);
-        let mut stats = RootStats::default();
-        let roots = p
-            .real_roots_with(-256.0, 256.0, &RootOptions::new(1e-12), &mut stats)
-            .unwrap();
-        let r = 43.713_288_216_140_66;
-        assert_eq!(roots.len(), 2, "two real roots: {roots:?}");
-        assert!(
-            (roots[0] + r).abs() <= 1e-12 && (roots[1] - r).abs() <= 1e-12,
-            "{roots:?}"
-        );
-        assert_eq!(stats.exact_fallbacks, 0, "no exact sequence: {stats:?}");
-    }
-
-    /// The scaled weight bounds the sum it stands for: against exact rationals where the sum
-    /// still fits, and by its exponent where it does not.
-    #[test]
-    fn scaled_abs_weight_is_an_upper_bound() {
-        let c: Vec<f64> = (0..=160)
-            .map(|i| if i % 3 == 0 { -1.5 } else { 0.25 * i as f64 })
-            .collect();
-        for r in [0.5, 3.0, 40.0] {
-            let (m, e) = scaled_abs_weight(&c, r);
-            let exact = c.iter().rev().fold(Rat::zero(), |acc, ci| {
-                acc * rat_from_f64(r).unwrap() + rat_from_f64(ci.abs()).unwrap()
-            });
-            let bound = rat_from_f64(m).unwrap() * Rat::from_integer(2.into()).pow(e);
-            assert!(bound >= exact, "r = {r}: {m}·2^{e}");
+        for (lo, hi) in [(-64.0, 64.0), (-256.0, 256.0)] {
+            // On (−256, 256] the end values (≈ 2^1280) themselves leave f64's range, and
+            // no tier could sign the ends before the wide magnitude.
+            let mut stats = RootStats::default();
+            let roots = p
+                .real_roots_with(lo, hi, &RootOptions::new(1e-12), &mut stats)
+                .unwrap();
+            // 2^(109/20) to 30 digits (mpmath): 43.7132882161406566032393579293.
+            let r = 43.713_288_216_140_66;
+            assert_eq!(roots.len(), 2, "two real roots on ({lo}, {hi}]: {roots:?}");
             assert!(
-                bound <= exact * Rat::new(101.into(), 100.into()),
-                "and tight at r = {r}"
+                (roots[0] + r).abs() <= 1e-12 && (roots[1] - r).abs() <= 1e-12,
+                "{roots:?}"
+            );
+            assert_eq!(stats.exact_fallbacks, 0, "no exact sequence: {stats:?}");
+            assert!(
+                stats.multiprecision_pieces > 0,
+                "the wide tiers decided: {stats:?}"
             );
         }
-        let (m, e) = scaled_abs_weight(&c, 256.0);
-        assert!(
-            m.is_finite() && e >= 1200,
-            "2^1280 leaves f64's range: {m}·2^{e}"
-        );
-        // Regression: a radius whose product with the sum overflows even after
-        // renormalising made the renormalisation loop forever (`∞·2^-600 = ∞`); found by
-        // the peers bench on the Orellana–De Michele quartics over (−∞, ∞).
-        let small = [1.0, 2.0, 3.0, 4.0, 5.0];
-        for r in [1e300, f64::MAX] {
-            assert_eq!(scaled_abs_weight(&small, r).0, f64::INFINITY, "r = {r:e}");
-        }
-        // Below that the renormalised sum still bounds the exact one.
-        let (m, e) = scaled_abs_weight(&small, 1e200);
-        let exact = small.iter().rev().fold(Rat::zero(), |acc, ci| {
-            acc * rat_from_f64(1e200).unwrap() + rat_from_f64(*ci).unwrap()
-        });
-        let bound = rat_from_f64(m).unwrap() * Rat::from_integer(2.into()).pow(e);
-        assert!(m.is_finite() && bound >= exact, "r = 1e200: {m}·2^{e}");
     }
 
     proptest! {

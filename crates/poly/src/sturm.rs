@@ -15,7 +15,8 @@
 //!   `P/g`, so counts are of *distinct* roots and stay right at the multiple roots themselves
 //!   (where the undivided sequence vanishes entirely).
 
-use num_traits::{Signed, Zero};
+use num_bigint::BigInt;
+use num_traits::{One, Signed, Zero};
 
 use crate::int_poly::IntPoly;
 use crate::root_error::RootError;
@@ -80,12 +81,32 @@ impl QPoly {
         let mut seq = vec![p.clone()];
         if p.degree() > 0 {
             seq.push(p.derivative());
+            // Subresultant PRS (Brown and Traub 1971; Knuth, TAOCP vol. 2, §4.6.1), in
+            // magnitudes: member k + 1 is `±prem(V_{k−1}, V_k)/|β_k|`, an exact division by a
+            // positive integer, so it stays a positive multiple of `−rem` (a Sturm member).
+            // Why not the primitive PRS: removing each member's content took a gcd of
+            // thousands-of-bits coefficients per member, seconds at degree 33 with
+            // coefficients up to f64::MAX (issue 13 follow-up); the subresultant divisor is
+            // known in advance and the members' sizes grow as slowly.
+            // |ψ₁| = 1, |β₁| = 1; |ψ_k| = |lc(V_{k−1})|^{d_{k−1}} / |ψ_{k−1}|^{d_{k−1}−1} and
+            // |β_k| = |lc(V_{k−1})|·|ψ_k|^{d_k}, with d_k = deg V_{k−1} − deg V_k.
+            let mut psi = BigInt::one();
+            let mut beta = BigInt::one();
             loop {
                 let n = seq.len();
-                let r = seq[n - 2].neg_rem(&seq[n - 1]);
+                let r = seq[n - 2].neg_prem(&seq[n - 1]).div_scalar_exact(&beta);
                 if r.is_zero() {
                     break;
                 }
+                let d_prev = seq[n - 2].degree() - seq[n - 1].degree();
+                let d_next = seq[n - 1].degree() - r.degree();
+                let lc = seq[n - 1].lc_abs();
+                psi = if d_prev == 1 {
+                    lc.clone()
+                } else {
+                    lc.pow(d_prev as u32) / psi.pow(d_prev as u32 - 1)
+                };
+                beta = lc * psi.pow(d_next as u32);
                 seq.push(r);
             }
         }
