@@ -583,6 +583,45 @@ enum Isolation<'p> {
 }
 
 /// The default certified query: closed form, then Bernstein isolation, then refinement.
+/// Descartes' rule of signs on the stored coefficients: with `lo ≥ 0`, no sign change
+/// among the non-zero coefficients means no root in `(lo, hi] ⊂ (0, ∞)`; with `hi < 0`, none
+/// among those of `p(−x)` means none in `(lo, hi] ⊂ (−∞, 0)`, and with `hi = 0` the same
+/// holds when `p(0) = c₀ ≠ 0`. Exact: it reads stored signs only. It decides at once what the Bernstein run, whose error bound is the whole range's
+/// `Σ|cᵢ||x|ⁱ`, can take many subdivisions to see: a shadow ray leaving the plane `x = 1` of
+/// `x³² − 1` meets `(1 + d·s)³² − 1 + δ` on `(0, B]`, all coefficients positive (issue 11;
+/// `docs/speed.md`, "High-degree surfaces").
+fn no_root_by_descartes(c: &[f64], lo: f64, hi: f64) -> bool {
+    let changes = |flip: bool| {
+        let mut last = 0i8;
+        for (i, &ci) in c.iter().enumerate() {
+            let mut s = if ci > 0.0 {
+                1
+            } else if ci < 0.0 {
+                -1
+            } else {
+                0
+            };
+            if flip && i % 2 == 1 {
+                s = -s;
+            }
+            if s != 0 {
+                if last != 0 && s != last {
+                    return true;
+                }
+                last = s;
+            }
+        }
+        false
+    };
+    if lo >= 0.0 {
+        !changes(false)
+    } else if hi < 0.0 || (hi == 0.0 && c.first().is_some_and(|&c0| c0 != 0.0)) {
+        !changes(true)
+    } else {
+        false
+    }
+}
+
 fn certified_smallest(
     p: &Poly<f64>,
     lo: f64,
@@ -602,6 +641,9 @@ fn certified_smallest(
             stats.closed_form += 1;
             return answer;
         }
+    }
+    if no_root_by_descartes(c, lo, hi) {
+        return None;
     }
     if !(lo.is_finite() && hi.is_finite()) {
         stats.exact_fallbacks += 1;
@@ -1120,6 +1162,54 @@ mod tests {
         for (lo, hi) in [(-1.0, 1.0), (-0.1, 1.0), (0.0, 1.0), (-1.0, 0.0)] {
             check(&p, lo, hi, 1e-12, &o);
         }
+    }
+
+    #[test]
+    fn shadow_ray_off_a_high_degree_plane_is_decided_by_the_coefficient_signs() {
+        // Issue 11 (x^32 − 1 took 25× Barth's time, most of it in shadow rays): a shadow ray
+        // leaving the plane x = 1 of x^32 − 1 along x(s) = 1 + s/2, offset by δ, meets
+        // (1 + s/2)^32 − 1 + δ on (0, 20]: every coefficient positive, no root. The
+        // Bernstein run bounds its rounding by the whole range's magnitude and subdivided
+        // before seeing that; Descartes' rule on the stored signs sees it at once.
+        let mut c = vec![0.0; 33];
+        let mut binom = 1.0;
+        for (k, ck) in c.iter_mut().enumerate() {
+            *ck = binom * 0.5f64.powi(k as i32);
+            binom = binom * (32 - k) as f64 / (k + 1) as f64;
+        }
+        c[0] = 1e-9; // 1 − 1 + δ
+        let p = Poly::new(c.clone());
+        let mut stats = RootStats::default();
+        let r = p.smallest_root_with(0.0, 20.0, &RootOptions::new(1e-12), &mut stats);
+        assert_eq!(r, None);
+        assert_eq!(
+            (
+                stats.subdivisions,
+                stats.adaptive_pieces,
+                stats.exact_fallbacks
+            ),
+            (0, 0, 0),
+            "decided without isolating: {stats:?}"
+        );
+        // The mirror image p(−x) on (−20, 0], and a sign change still searched.
+        let mirrored: Vec<f64> = c
+            .iter()
+            .enumerate()
+            .map(|(i, &ci)| if i % 2 == 1 { -ci } else { ci })
+            .collect();
+        assert_eq!(no_root_by_descartes(&mirrored, -20.0, 0.0), true);
+        assert_eq!(no_root_by_descartes(&mirrored, -20.0, 1.0), false);
+        assert_eq!(
+            no_root_by_descartes(&[0.0, 1.0, 1.0], -20.0, 0.0),
+            false,
+            "0 is a root"
+        );
+        c[0] = -1e-9;
+        let p = Poly::new(c);
+        assert!(
+            p.smallest_root(0.0, 20.0, 1e-12).is_some(),
+            "one sign change: a root"
+        );
     }
 
     #[test]
