@@ -1197,11 +1197,16 @@ mod tests {
             .enumerate()
             .map(|(i, &ci)| if i % 2 == 1 { -ci } else { ci })
             .collect();
-        assert_eq!(no_root_by_descartes(&mirrored, -20.0, 0.0), true);
-        assert_eq!(no_root_by_descartes(&mirrored, -20.0, 1.0), false);
-        assert_eq!(
-            no_root_by_descartes(&[0.0, 1.0, 1.0], -20.0, 0.0),
-            false,
+        assert!(
+            no_root_by_descartes(&mirrored, -20.0, 0.0),
+            "p(−x): no negative root"
+        );
+        assert!(
+            !no_root_by_descartes(&mirrored, -20.0, 1.0),
+            "a range across 0: maybe"
+        );
+        assert!(
+            !no_root_by_descartes(&[0.0, 1.0, 1.0], -20.0, 0.0),
             "0 is a root"
         );
         c[0] = -1e-9;
