@@ -33,6 +33,30 @@ fn brute_nearest(
     best
 }
 
+/// Asserts that the BVH's nearest hit of `ray` over `(0, ∞)` is the brute-force loop's, and
+/// so are its shadow verdicts over the whole ray and up to half the nearest hit; returns the
+/// hit. `what` is appended to the failure messages.
+fn assert_agrees_with_brute_force(
+    prepared: &PreparedScene,
+    ray: &Ray,
+    ws: &mut Workspace,
+    what: &str,
+) -> Option<(usize, Hit)> {
+    let range = 0.0..f64::INFINITY;
+    let fast = nearest_hit(prepared, ray, range.clone(), ws);
+    let slow = brute_nearest(prepared, ray, range.clone(), ws);
+    assert_eq!(fast, slow, "nearest hit of {ray:?}{what}");
+    let reach = fast.map_or(30.0, |(_, h)| h.t * 0.5);
+    for r in [range, 0.0..reach] {
+        assert_eq!(
+            occluded(prepared, ray, r.clone(), ws),
+            brute_occluded(prepared, ray, r.clone(), ws),
+            "shadow verdict of {ray:?} over {r:?}{what}"
+        );
+    }
+    fast
+}
+
 fn brute_occluded(scene: &PreparedScene, ray: &Ray, range: Range<f64>, ws: &mut Workspace) -> bool {
     scene
         .primitives
@@ -186,20 +210,8 @@ fn bvh_nearest_hits_and_shadow_verdicts_equal_brute_force() {
                     ),
                 ),
             };
-            let range = 0.0..f64::INFINITY;
-            let fast = nearest_hit(&prepared, &ray, range.clone(), &mut ws);
-            let slow = brute_nearest(&prepared, &ray, range.clone(), &mut ws);
-            assert_eq!(fast, slow, "nearest hit of {ray:?}");
+            let fast = assert_agrees_with_brute_force(&prepared, &ray, &mut ws, "");
             hits += usize::from(fast.is_some());
-            // Shadow verdicts over the whole ray and up to half the nearest hit.
-            let reach = fast.map_or(30.0, |(_, h)| h.t * 0.5);
-            for r in [range.clone(), 0.0..reach] {
-                assert_eq!(
-                    occluded(&prepared, &ray, r.clone(), &mut ws),
-                    brute_occluded(&prepared, &ray, r.clone(), &mut ws),
-                    "shadow verdict of {ray:?} over {r:?}"
-                );
-            }
             rays += 1;
         }
         assert!(
@@ -269,21 +281,12 @@ fn tiny_scenes_flat_or_not_equal_brute_force() {
                 rng.gen_range(-1.0..8.0),
             );
             let ray = Ray::new(origin, target - origin);
-            let range = 0.0..f64::INFINITY;
-            let fast = nearest_hit(&prepared, &ray, range.clone(), &mut ws);
-            assert_eq!(
-                fast,
-                brute_nearest(&prepared, &ray, range.clone(), &mut ws),
-                "nearest hit of {ray:?} among {n} objects"
+            assert_agrees_with_brute_force(
+                &prepared,
+                &ray,
+                &mut ws,
+                &format!(" among {n} objects"),
             );
-            let reach = fast.map_or(30.0, |(_, h)| h.t * 0.5);
-            for r in [range.clone(), 0.0..reach] {
-                assert_eq!(
-                    occluded(&prepared, &ray, r.clone(), &mut ws),
-                    brute_occluded(&prepared, &ray, r.clone(), &mut ws),
-                    "shadow verdict of {ray:?} over {r:?}"
-                );
-            }
         }
     }
 }
