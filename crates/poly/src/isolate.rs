@@ -582,14 +582,14 @@ enum Isolation<'p> {
     Heuristic(Vec<RootInterval<f64>>),
 }
 
-/// The default certified query: closed form, then Bernstein isolation, then refinement.
 /// Descartes' rule of signs on the stored coefficients: with `lo ≥ 0`, no sign change
 /// among the non-zero coefficients means no root in `(lo, hi] ⊂ (0, ∞)`; with `hi < 0`, none
 /// among those of `p(−x)` means none in `(lo, hi] ⊂ (−∞, 0)`, and with `hi = 0` the same
-/// holds when `p(0) = c₀ ≠ 0`. Exact: it reads stored signs only. It decides at once what the Bernstein run, whose error bound is the whole range's
-/// `Σ|cᵢ||x|ⁱ`, can take many subdivisions to see: a shadow ray leaving the plane `x = 1` of
-/// `x³² − 1` meets `(1 + d·s)³² − 1 + δ` on `(0, B]`, all coefficients positive (issue 11;
-/// `docs/speed.md`, "High-degree surfaces").
+/// holds when `p(0) = c₀ ≠ 0`. Exact: it reads stored signs only. It decides at once what
+/// the Bernstein run, whose error bound is the whole range's `Σ|cᵢ||x|ⁱ`, can take many
+/// subdivisions to see: a shadow ray leaving the plane `x = 1` of `x³² − 1` meets
+/// `(1 + d·s)³² − 1 + δ` on `(0, B]`, all coefficients positive (issue 11; `docs/speed.md`,
+/// "High-degree surfaces").
 fn no_root_by_descartes(c: &[f64], lo: f64, hi: f64) -> bool {
     let changes = |flip: bool| {
         let mut last = 0i8;
@@ -622,6 +622,7 @@ fn no_root_by_descartes(c: &[f64], lo: f64, hi: f64) -> bool {
     }
 }
 
+/// The default certified query: closed form, then Bernstein isolation, then refinement.
 fn certified_smallest(
     p: &Poly<f64>,
     lo: f64,
@@ -828,10 +829,10 @@ fn sturm_smallest(
 /// Refines a heuristic interval `(lo, hi]`. With certified opposite end signs it is a
 /// certified bracket, refined as the certified path refines one (with an exact finish when
 /// `f64` stalls); a certified-zero-free `lo` and an undecidable `hi` give `hi` when the
-/// stored polynomial is within rounding of zero there (a finite error bound). Otherwise the counts promised a root that no
-/// sign change confirms (a wrong count, or a root of even multiplicity): the interval is
-/// reported as [`RootError::Unresolved`], never its midpoint as a root (issue 11: roots 1e6
-/// and 1e9 came back as 878 417.97 and 887 500 000).
+/// stored polynomial is within rounding of zero there (a finite error bound). Otherwise the
+/// counts promised a root that no sign change confirms (a wrong count, or a root of even
+/// multiplicity): the interval is reported as [`RootError::Unresolved`], never its midpoint
+/// as a root (issue 11: roots 1e6 and 1e9 came back as 878 417.97 and 887 500 000).
 fn refine_heuristic(
     p: &Poly<f64>,
     iv: &RootInterval<f64>,
