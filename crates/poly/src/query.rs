@@ -28,7 +28,7 @@ use crate::root_error::RootError;
 use crate::root_interval::RootInterval;
 use crate::root_options::RootOptions;
 use crate::stats::RootStats;
-use crate::univariate::Poly;
+use crate::univariate::{Poly, root_bound_of};
 
 /// A polynomial over `f64` whose coefficients (lowest degree first) live in a borrowed slice.
 ///
@@ -73,6 +73,11 @@ impl<'a> PolyRef<'a> {
     /// True for the zero polynomial.
     pub fn is_zero(&self) -> bool {
         self.coeffs.is_empty()
+    }
+
+    /// [`Poly::root_bound`] of the viewed polynomial, without copying it.
+    pub fn root_bound(&self) -> Option<f64> {
+        root_bound_of(self.coeffs)
     }
 
     /// A root query on `(lo, hi]` with `opts` and no statistics (see [`RootQuery`]).

@@ -436,33 +436,39 @@ impl Poly<f64> {
     /// `|cᵢ|^{1/k} / |cₙ|^{1/k}`, which does not underflow, so the bound never excludes a
     /// root (it was 0 there, and every method answered "no root").
     pub fn root_bound(&self) -> Option<f64> {
-        if self.degree() == 0 || !self.is_finite() {
-            return None;
-        }
-        let n = self.degree();
-        let lc = self.coeffs[n].abs();
-        let mut cauchy: f64 = 0.0;
-        let mut fujiwara: f64 = 0.0;
-        for (i, c) in self.coeffs[..n].iter().enumerate() {
-            let q = c.abs() / lc;
-            cauchy = cauchy.max(q);
-            let k = n - i;
-            let inv_k = 1.0 / k as f64;
-            // Fujiwara: 2·max |c_{n−k}/c_n|^{1/k}, with the constant term halved.
-            let half = if i == 0 { 0.5 } else { 1.0 };
-            let root = if q >= f64::MIN_POSITIVE || *c == 0.0 {
-                (q * half).powf(inv_k)
-            } else {
-                // The quotient underflowed: scale before dividing.
-                (c.abs() * half).powf(inv_k) / lc.powf(inv_k)
-            };
-            fujiwara = fujiwara.max(root);
-        }
-        let cauchy = (1.0 + cauchy) * ROOT_BOUND_MARGIN;
-        let fujiwara = 2.0 * fujiwara * ROOT_BOUND_MARGIN + ROOT_BOUND_UNDERFLOW_PAD;
-        let b = cauchy.min(fujiwara);
-        b.is_finite().then_some(b)
+        root_bound_of(&self.coeffs)
     }
+}
+
+/// [`Poly::root_bound`] of the coefficients `c` (lowest first, no trailing zero), the one
+/// implementation behind it and [`PolyRef::root_bound`](crate::PolyRef::root_bound).
+pub(crate) fn root_bound_of(c: &[f64]) -> Option<f64> {
+    let n = c.len().saturating_sub(1);
+    if n == 0 || !c.iter().all(|x| x.is_finite()) {
+        return None;
+    }
+    let lc = c[n].abs();
+    let mut cauchy: f64 = 0.0;
+    let mut fujiwara: f64 = 0.0;
+    for (i, ci) in c[..n].iter().enumerate() {
+        let q = ci.abs() / lc;
+        cauchy = cauchy.max(q);
+        let k = n - i;
+        let inv_k = 1.0 / k as f64;
+        // Fujiwara: 2·max |c_{n−k}/c_n|^{1/k}, with the constant term halved.
+        let half = if i == 0 { 0.5 } else { 1.0 };
+        let root = if q >= f64::MIN_POSITIVE || *ci == 0.0 {
+            (q * half).powf(inv_k)
+        } else {
+            // The quotient underflowed: scale before dividing.
+            (ci.abs() * half).powf(inv_k) / lc.powf(inv_k)
+        };
+        fujiwara = fujiwara.max(root);
+    }
+    let cauchy = (1.0 + cauchy) * ROOT_BOUND_MARGIN;
+    let fujiwara = 2.0 * fujiwara * ROOT_BOUND_MARGIN + ROOT_BOUND_UNDERFLOW_PAD;
+    let b = cauchy.min(fujiwara);
+    b.is_finite().then_some(b)
 }
 
 impl QPoly {

@@ -6,7 +6,7 @@
 use std::ops::Range;
 
 use glam::{DVec2, DVec3};
-use poly::{Poly, PolyRef, RootOptions};
+use poly::{PolyRef, RootOptions};
 
 use crate::methods::RootMethods;
 
@@ -174,7 +174,7 @@ pub(crate) fn smallest_root_in(
 /// Two things keep it at `f64` speed where one query over `(lo, hi]` was not (issue 11,
 /// `x^32 − 1`: 45 µs a ray, most in double-double, after the expansion point had fixed the
 /// restriction itself):
-/// - Both ends are cut to `poly`'s root bound `B` ([`Poly::root_bound`], Fujiwara's), which
+/// - Both ends are cut to `poly`'s root bound `B` ([`PolyRef::root_bound`], Fujiwara's), which
 ///   `poly` applies only to an infinite end, and then as Cauchy's bound — for `(d_x s)^32 − 1`
 ///   10¹², where the polynomial overflows, so its end sign could not be certified and the query
 ///   fell to exact rational isolation; a far finite `lo` (the eye) is kept as it is.
@@ -187,10 +187,7 @@ pub(crate) fn smallest_root_in(
 /// The reflected half wants its *largest* root (the smallest `s`): all its roots are found and
 /// the largest kept. A root exactly at `s = 0` is one of the stored polynomial (`c₀ = 0`).
 fn smallest_root_split(ws: &mut Workspace, lo: f64, hi: f64, opts: &RootOptions) -> Option<f64> {
-    let p = Poly::new(std::mem::take(&mut ws.coeffs));
-    let bound = p.root_bound();
-    ws.coeffs = p.into_coeffs();
-    let (lo, hi) = match bound {
+    let (lo, hi) = match PolyRef::new(&ws.coeffs).root_bound() {
         Some(b) => (lo.max((-b).next_down()), hi.min(b)),
         None => (lo, hi),
     };
