@@ -13,9 +13,9 @@
 //! `python3` in the same bench run; flint is a reference, never a dependency: without it the
 //! row says why it is missing).
 //!
-//! `PEERS_PROFILE=<corpus>` (`entry`, `eye`, `wilkinson`, `planted`, `quartics`) runs only
-//! `poly` on that corpus, once, and prints its statistics: the load-independent
-//! instruction count comes from running that under
+//! `PEERS_PROFILE=<corpus>` (`entry`, `eye`, `wilkinson`, `planted`, `quartics`, `kac40`,
+//! `cheb80`) runs only `poly` on that corpus, once, and prints its statistics: the
+//! load-independent instruction count comes from running that under
 //! `valgrind --tool=callgrind --toggle-collect='*run_poly_only*'`.
 
 #![allow(clippy::print_stdout, reason = "a report binary")]
@@ -364,6 +364,16 @@ fn target_corpus(name: &str) -> Option<Corpus> {
                 false,
             )
         },
+        "kac40" => Corpus::new(
+            "Kac degree 40, all roots",
+            queries(degree_cases(Family::Kac, 40, 3, 14)),
+            false,
+        ),
+        "cheb80" => Corpus::new(
+            "Chebyshev degree 80, all roots",
+            queries(degree_cases(Family::Chebyshev, 80, 1, 14)),
+            false,
+        ),
         _ => return None,
     })
 }
@@ -385,7 +395,7 @@ fn main() {
         let name = name.to_string_lossy();
         let Some(corpus) = target_corpus(&name) else {
             eprintln!(
-                "PEERS_PROFILE: unknown corpus {name:?} (entry, eye, wilkinson, planted, quartics)"
+                "PEERS_PROFILE: unknown corpus {name:?} (entry, eye, wilkinson, planted, quartics, kac40, cheb80)"
             );
             std::process::exit(2);
         };

@@ -94,7 +94,11 @@ trait Arith {
     fn add(&self, x: &Self::T, y: &Self::T) -> Self::T;
     fn add_f(&self, x: &Self::T, y: f64) -> Self::T;
     fn mul(&self, x: &Self::T, y: &Self::T) -> Self::T;
-    fn mul_f(&self, x: &Self::T, y: f64) -> Self::T;
+    /// An `f64` multiplier prepared once for [`Arith::mul_by`] (exactly `y`): the wide tier
+    /// would otherwise convert it at every product of a Taylor shift or Horner loop.
+    type F;
+    fn factor(&self, y: f64) -> Self::F;
+    fn mul_by(&self, x: &Self::T, y: &Self::F) -> Self::T;
     /// Whether the tier's exponent range is unbounded, so that it can use a [`Mag::Wide`]
     /// magnitude (one that overflows `f64`).
     const WIDE_RANGE: bool;
@@ -124,8 +128,12 @@ impl Arith for DdArith {
     fn mul(&self, x: &Dd, y: &Dd) -> Dd {
         x.mul(*y)
     }
-    fn mul_f(&self, x: &Dd, y: f64) -> Dd {
-        x.mul_f(y)
+    type F = f64;
+    fn factor(&self, y: f64) -> f64 {
+        y
+    }
+    fn mul_by(&self, x: &Dd, y: &f64) -> Dd {
+        x.mul_f(*y)
     }
     const WIDE_RANGE: bool = false;
     fn sign_beyond(&self, x: &Dd, k: usize, mag: &Mag, mult: f64, tiny: f64) -> i8 {
@@ -152,6 +160,33 @@ struct BigArith {
 /// Precision that holds any sum of two `f64` numbers exactly: their exponents differ by at
 /// most `2098`, plus 53 bits of mantissa and a carry.
 const EXACT_PAIR_BITS: usize = 2176;
+
+/// The binary exponent `e` of a non-zero finite `x` (`2^e ≤ |x| < 2^(e+1)`), subnormals
+/// included.
+fn binary_exponent(x: f64) -> i32 {
+    let bits = x.abs().to_bits();
+    let biased = (bits >> 52) as i32;
+    if biased == 0 {
+        // Subnormal: the leading bit of the 52-bit fraction sets the exponent.
+        -1074 + (63 - bits.leading_zeros() as i32)
+    } else {
+        biased - 1023
+    }
+}
+
+/// Precision, in bits (a multiple of 64, at most [`EXACT_PAIR_BITS`]), that holds
+/// `hi + lo` exactly: from the carry above `hi`'s leading bit down to `lo`'s last bit,
+/// `|e(hi) − e(lo)| + 54`. Why not always [`EXACT_PAIR_BITS`]: the node width `w` is such a
+/// pair and multiplies every coefficient of a Taylor shift, and a product with a 2 176-bit
+/// operand cost astro-float several times one of the tier's own width (issue 11:
+/// Chebyshev T₈₀'s isolation spent a fifth of its time in those products).
+fn exact_pair_bits(hi: f64, lo: f64) -> usize {
+    if hi == 0.0 || lo == 0.0 {
+        return 64;
+    }
+    let span = (binary_exponent(hi) - binary_exponent(lo)).unsigned_abs() as usize + 54;
+    span.div_ceil(64).saturating_mul(64).min(EXACT_PAIR_BITS)
+}
 
 impl BigArith {
     /// The unit roundoff: `astro_float` rounds the exact result to `bits` bits (rounded up to
@@ -188,7 +223,7 @@ impl Arith for BigArith {
         big_from_f64(x)
     }
     fn exact_pair(&self, hi: f64, lo: f64) -> BigFloat {
-        big_from_f64(hi).add(&big_from_f64(lo), EXACT_PAIR_BITS, RM)
+        big_from_f64(hi).add(&big_from_f64(lo), exact_pair_bits(hi, lo), RM)
     }
     fn add(&self, x: &BigFloat, y: &BigFloat) -> BigFloat {
         x.add(y, self.bits, RM)
@@ -199,8 +234,12 @@ impl Arith for BigArith {
     fn mul(&self, x: &BigFloat, y: &BigFloat) -> BigFloat {
         x.mul(y, self.bits, RM)
     }
-    fn mul_f(&self, x: &BigFloat, y: f64) -> BigFloat {
-        x.mul(&big_from_f64(y), self.bits, RM)
+    type F = BigFloat;
+    fn factor(&self, y: f64) -> BigFloat {
+        big_from_f64(y)
+    }
+    fn mul_by(&self, x: &BigFloat, y: &BigFloat) -> BigFloat {
+        x.mul(y, self.bits, RM)
     }
     const WIDE_RANGE: bool = true;
     fn sign_beyond(&self, x: &BigFloat, k: usize, mag: &Mag, mult: f64, _tiny: f64) -> i8 {
@@ -275,8 +314,9 @@ fn magnitude(c: &[f64], r: f64, wide: bool) -> Option<(Mag, f64)> {
 fn horner_sign<A: Arith>(ar: &A, c: &[f64], x: f64) -> i8 {
     let n = c.len() - 1;
     let mut v = ar.exact_f64(c[n]);
+    let xf = ar.factor(x);
     for &ci in c[..n].iter().rev() {
-        v = ar.add_f(&ar.mul_f(&v, x), ci);
+        v = ar.add_f(&ar.mul_by(&v, &xf), ci);
     }
     let Some((s, z)) = magnitude(c, x.abs(), A::WIDE_RANGE) else {
         return 0;
@@ -349,8 +389,10 @@ enum Class {
 ///
 /// The shift starts at the end `a` nearer 0 and runs towards the other, `t = a + w·u` with
 /// `w = other − a` exact (a double-double pair), so the absolute-value program is bounded by
-/// `M = Σ|cₖ|(|a| + |w|)ᵏ = Σ|cₖ|·max(|x|, |y|)ᵏ`. Taylor shift by Horner's rule on
-/// polynomials (3 roundings per step, `3n`), then `Bᵢ = Σ_{j≤i} C(n−j, i−j)·q_j` as the
+/// `M = Σ|cₖ|(|a| + |w|)ᵏ = Σ|cₖ|·max(|x|, |y|)ᵏ`. Taylor shift by `a` by Horner's rule on
+/// polynomials (2 roundings per step, `2n`), each `q_j` then scaled by `wʲ` (`wʲ` by repeated
+/// products, at most `n` roundings with the scaling; the products by `w` are `n`, not the
+/// `n²/2` of shifting by `a + w·u` directly), then `Bᵢ = Σ_{j≤i} C(n−j, i−j)·q_j` as the
 /// Horner-like scheme `A_j = A_{j−1}·(1 + u) + q_j·uʲ` (one rounding per coefficient and step,
 /// `n + 1`). With `k = 4n + 1` roundings: `|B̂ᵢ − Bᵢ| ≤ γ(k)·C(n, i)·M`, since the absolute
 /// program's `B̃ᵢ = Σ_j C(n−j, i−j)·q̃_j ≤ C(n, i)·Σ_j q̃_j = C(n, i)·M` (as
@@ -386,19 +428,24 @@ fn classify<A: Arith>(
         return Class::Hopeless;
     }
     q.clear();
-    q.push(ar.exact_f64(c[n]));
-    q.resize(n + 1, ar.exact_f64(0.0));
-    for k in (0..n).rev() {
-        let len = n - k;
-        for i in (1..=len).rev() {
-            let t = ar.mul(&q[i - 1], &w);
-            q[i] = if a == 0.0 {
-                t
-            } else {
-                ar.add(&ar.mul_f(&q[i], a), &t)
-            };
+    if a == 0.0 {
+        q.extend(c.iter().map(|&ck| ar.exact_f64(ck)));
+    } else {
+        q.push(ar.exact_f64(c[n]));
+        q.resize(n + 1, ar.exact_f64(0.0));
+        let af = ar.factor(a);
+        for k in (0..n).rev() {
+            for i in (1..=n - k).rev() {
+                q[i] = ar.add(&ar.mul_by(&q[i], &af), &q[i - 1]);
+            }
+            q[0] = ar.add_f(&ar.mul_by(&q[0], &af), c[k]);
         }
-        q[0] = ar.add_f(&ar.mul_f(&q[0], a), c[k]);
+    }
+    // `q_j ← q_j·wʲ`: the coefficients of `p(a + w·u)`.
+    let mut wj = w.clone();
+    for qj in q.iter_mut().skip(1) {
+        *qj = ar.mul(qj, &wj);
+        wj = ar.mul(&wj, &w);
     }
     b.clear();
     b.push(q[0].clone());
@@ -750,6 +797,43 @@ mod tests {
     use crate::scalar::{Rat, rat_from_f64};
     use crate::univariate::Poly;
     use num_traits::Signed;
+
+    /// The right-sized precision of a node width (issue 11) still holds `hi + lo` exactly:
+    /// equal to the sum formed at [`EXACT_PAIR_BITS`], which holds any two `f64`, across
+    /// exponent gaps of 0 to 2 098 binades, a carry out of `hi`'s leading bit, subnormal
+    /// parts and `|lo| > |hi|`.
+    #[test]
+    fn node_width_pairs_convert_exactly_at_their_own_precision() {
+        let two_pow = |e: i32| 2f64.powi(e);
+        let mut pairs = vec![
+            (1.0, 1e-17),
+            (2.0f64.next_down(), two_pow(-53).next_down()),
+            (1.0 + f64::EPSILON, -3.0 * two_pow(-60)),
+            (two_pow(1000), 5e-324),
+            (-3.0, 7.0 * 5e-324),
+            (1e300, -1e-300),
+            (f64::MAX, -5e-324),
+            (5e-324, 1e-323),
+            (1e-300, 1e300),
+            (0.1, 0.0),
+        ];
+        for k in 0..200 {
+            let (a, b) = (1.0 + k as f64 / 7.0, -(k as f64).exp2() / 3.0);
+            let (hi, lo) = two_sum(a, b);
+            pairs.push((hi, lo));
+        }
+        let ar = BigArith { bits: 256 };
+        for (hi, lo) in pairs {
+            let sized = ar.exact_pair(hi, lo);
+            let full = big_from_f64(hi).add(&big_from_f64(lo), EXACT_PAIR_BITS, RM);
+            let diff = sized.sub(&full, EXACT_PAIR_BITS, RM);
+            assert!(
+                diff.is_zero(),
+                "{hi:e} + {lo:e} at {} bits",
+                exact_pair_bits(hi, lo)
+            );
+        }
+    }
 
     /// Issue 13 follow-up: astro-float's `BigFloat::from_f64` halves subnormals, which made
     /// the certified path return the roots of `1.877e-308·x² − 3.83` `√2` too large. The
