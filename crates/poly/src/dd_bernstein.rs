@@ -71,6 +71,12 @@ pub(crate) struct DdBernstein<'c> {
     d: Dd,
     /// `M` rounded up (see the module docs).
     mag: f64,
+    /// Roundings on any path to the top node's coefficients (`4n + 1` from the Taylor shift,
+    /// 0 for coefficients handed down by [`Self::from_bernstein`]).
+    k0: usize,
+    /// Absolute error of the top node's coefficients that the run did not make itself (0, or
+    /// the bound handed down with them).
+    e0: f64,
     /// Absolute underflow allowance of the top node; each level adds [`Self::level_tiny`].
     tiny0: f64,
     level_tiny: f64,
@@ -174,6 +180,8 @@ impl<'c> DdBernstein<'c> {
             s_y,
             d: Dd::from_pair(dh, dl),
             mag,
+            k0: 4 * n + 1,
+            e0: 0.0,
             tiny0,
             level_tiny: 2.0 * n as f64 * DD_UNDERFLOW,
             arena,
@@ -192,10 +200,78 @@ impl<'c> DdBernstein<'c> {
         })
     }
 
+    /// The run on `(x, y]` from Bernstein coefficients computed elsewhere: `b` in order from
+    /// `x` to `y`, each within `e0` of the exact Bernstein coefficient of the stored
+    /// polynomial on `[x, y]` (the descent from a wide tier, `multiprec.rs`). Why: a node the
+    /// wide tier had to classify (power-basis coefficients far larger than the polynomial's
+    /// values, Chebyshev T₈₀'s `2⁷⁹`) usually has Bernstein coefficients that double-double
+    /// resolves easily, so its subtree needs no further wide Taylor shift. The bound: the
+    /// exact averages of the handed-down values are within `e0` of the exact ones (averages
+    /// of errors at most `e0`), and the run's own roundings are at most `γ(n·depth)·M` with
+    /// `M` the largest `|b̂ᵢ|` (the absolute-value program of de Casteljau's averages never
+    /// exceeds its inputs). `None` when the ends are not as [`Self::new`] requires.
+    pub(crate) fn from_bernstein(
+        c: &'c [f64],
+        (x, y): (f64, f64),
+        (s_x, s_y): (i8, i8),
+        b: SmallVec<[Dd; 64]>,
+        e0: f64,
+        sign_at: fn(&[f64], f64) -> i8,
+    ) -> Option<Self> {
+        let n = c.len() - 1;
+        if b.len() != n + 1
+            || n < 2
+            || x >= y
+            || x.is_nan()
+            || y.is_nan()
+            || (x < 0.0 && y > 0.0)
+            || !e0.is_finite()
+        {
+            return None;
+        }
+        let mag = b
+            .iter()
+            .map(|v| v.hi.abs() + v.lo.abs())
+            .fold(0.0f64, f64::max)
+            * (1.0 + 4.0 * f64::EPSILON);
+        if !mag.is_finite() {
+            return None;
+        }
+        let (dh, dl) = two_sum(y, -x);
+        Some(DdBernstein {
+            c,
+            n,
+            x,
+            y,
+            s_x,
+            s_y,
+            d: Dd::from_pair(dh, dl),
+            mag,
+            k0: 0,
+            e0,
+            tiny0: 0.0,
+            level_tiny: 2.0 * n as f64 * DD_UNDERFLOW,
+            arena: b,
+            stack: SmallVec::from_elem(
+                Node {
+                    u0: 0.0,
+                    u1: 1.0,
+                    depth: 0,
+                    at: 0,
+                },
+                1,
+            ),
+            nodes: 0,
+            floor: (x, s_x),
+            sign_at,
+        })
+    }
+
     /// The bound on every coefficient of a node at `depth`.
     fn bound(&self, depth: u32) -> f64 {
-        let k = 4 * self.n + 1 + self.n * depth as usize;
-        gamma_u(k, DD_UNIT) * self.mag * (1.0 + 4.0 * f64::EPSILON)
+        let levels = self.n * depth as usize;
+        self.e0 * (1.0 + gamma_u(levels, DD_UNIT))
+            + gamma_u(self.k0 + levels, DD_UNIT) * self.mag * (1.0 + 4.0 * f64::EPSILON)
             + self.tiny0
             + self.level_tiny * f64::from(depth)
     }

@@ -701,12 +701,10 @@ fn refine_certified(
 ) -> f64 {
     match refine_bracket(p.coeffs(), b, tol, method, stats) {
         Refined::Root(r) => r,
-        Refined::Stuck(b) => {
-            refine_wide(p.coeffs(), b, tol.on(b.lo, b.hi), stats).unwrap_or_else(|| {
-                stats.refine_fallbacks += 1;
-                refine_exact_f64(p, b, tol)
-            })
-        }
+        Refined::Stuck(b) => refine_wide(p.coeffs(), b, tol, stats).unwrap_or_else(|| {
+            stats.refine_fallbacks += 1;
+            refine_exact_f64(p, b, tol)
+        }),
     }
 }
 

@@ -29,7 +29,9 @@ use smallvec::SmallVec;
 use crate::bernstein::Bracket;
 use crate::dd_bernstein::{DdBernstein, DdOutcome};
 use crate::double_double::{DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, two_sum};
-use crate::eval_bound::{abs_weights, certified_sign};
+use crate::eval_bound::{abs_weights, certified_sign, certified_value};
+use crate::refine::{IllinoisEnd, illinois_by};
+use crate::root_options::Tolerance;
 use crate::scalar::rat_from_f64;
 use crate::stats::RootStats;
 use crate::univariate::Poly;
@@ -107,6 +109,9 @@ trait Arith {
     fn sign_beyond(&self, x: &Self::T, k: usize, mag: &Mag, mult: f64, tiny: f64) -> i8;
     /// The absolute underflow error of one operation (0 without underflow).
     fn underflow(&self) -> f64;
+    /// `x` rounded to `f64` (NaN outside its range): a value to place trial points by, never
+    /// a certified one.
+    fn approx(&self, x: &Self::T) -> f64;
 }
 
 struct DdArith;
@@ -149,6 +154,9 @@ impl Arith for DdArith {
     }
     fn underflow(&self) -> f64 {
         DD_UNDERFLOW
+    }
+    fn approx(&self, x: &Dd) -> f64 {
+        x.hi
     }
 }
 
@@ -275,6 +283,9 @@ impl Arith for BigArith {
     fn underflow(&self) -> f64 {
         0.0
     }
+    fn approx(&self, x: &BigFloat) -> f64 {
+        big_to_dd(x).map_or(f64::NAN, |d| d.hi)
+    }
 }
 
 /// `M = Σ|cᵢ|·rⁱ`, the magnitude in the error bounds, computed rounded up: in `f64`
@@ -310,8 +321,9 @@ fn magnitude(c: &[f64], r: f64, wide: bool) -> Option<(Mag, f64)> {
 // ---------------------------------------------------------------------------------------
 // Certified point signs.
 
-/// The sign of `p(x)` at one tier by Horner's rule (`2n` roundings), certified, or 0.
-fn horner_sign<A: Arith>(ar: &A, c: &[f64], x: f64) -> i8 {
+/// The sign of `p(x)` at one tier by Horner's rule (`2n` roundings), certified, or 0; with
+/// the computed value rounded to `f64` ([`Arith::approx`]).
+fn horner_sign<A: Arith>(ar: &A, c: &[f64], x: f64) -> (i8, f64) {
     let n = c.len() - 1;
     let mut v = ar.exact_f64(c[n]);
     let xf = ar.factor(x);
@@ -319,7 +331,7 @@ fn horner_sign<A: Arith>(ar: &A, c: &[f64], x: f64) -> i8 {
         v = ar.add_f(&ar.mul_by(&v, &xf), ci);
     }
     let Some((s, z)) = magnitude(c, x.abs(), A::WIDE_RANGE) else {
-        return 0;
+        return (0, ar.approx(&v));
     };
     // Underflow errors are amplified by at most |x| per later step: Σ|x|ⁱ per operation.
     // (A wide tier has no underflow; its `z` may be infinite and is then not used.)
@@ -328,7 +340,7 @@ fn horner_sign<A: Arith>(ar: &A, c: &[f64], x: f64) -> i8 {
     } else {
         2.0 * ar.underflow() * z
     };
-    ar.sign_beyond(&v, 2 * n, &s, 1.0, tiny)
+    (ar.sign_beyond(&v, 2 * n, &s, 1.0, tiny), ar.approx(&v))
 }
 
 /// [`point_sign`] from double-double up, as the sign function of [`DdBernstein`].
@@ -344,18 +356,36 @@ pub(crate) fn point_sign(c: &[f64], x: f64, from: Tier) -> (i8, Tier) {
     if s != 0 {
         return (s, from);
     }
+    let (s, t, _) = wide_sign(c, x, from);
+    (s, t)
+}
+
+/// [`point_sign`] with an approximate value of `p(x)` (NaN when unknown), for placing the
+/// next trial point of a refinement.
+fn point_sign_value(c: &[f64], x: f64, from: Tier) -> (i8, Tier, f64) {
+    let (v, s) = certified_value(c, x);
+    if s != 0 {
+        return (s, from, v);
+    }
+    wide_sign(c, x, from)
+}
+
+/// The tiers of [`point_sign`] above `f64`, from `from` up.
+fn wide_sign(c: &[f64], x: f64, from: Tier) -> (i8, Tier, f64) {
     let mut tier = Some(from);
+    let mut value = f64::NAN;
     while let Some(t) = tier {
-        let s = match t {
+        let (s, v) = match t {
             Tier::Dd => horner_sign(&DdArith, c, x),
             Tier::Big(bits) => horner_sign(&BigArith { bits }, c, x),
         };
         if s != 0 {
-            return (s, t);
+            return (s, t, v);
         }
+        value = v;
         tier = t.next();
     }
-    (0, Tier::Big(MAX_BITS))
+    (0, Tier::Big(MAX_BITS), value)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -523,8 +553,14 @@ pub(crate) enum Outcome {
 }
 
 /// A node of the bisection: `(x, y]`, the certified signs of `p` at its ends, the tier it
-/// starts at, its depth.
-type Node = (f64, f64, i8, i8, Tier, u32);
+/// starts at, its depth, and whether a wide tier's split of it may descend to double-double
+/// ([`descend`]): not within the rest a descended run handed back (a cluster double-double
+/// cannot resolve would otherwise be descended into again at every level).
+type Node = (f64, f64, i8, i8, Tier, u32, bool);
+
+/// A double-double de Casteljau run with its segment's end `y`, the sign there, the
+/// segment's halvings, and for a descended run the tier and depth of its node.
+type FastRun<'c> = (DdBernstein<'c>, f64, i8, u32, Option<(Tier, u32)>);
 
 /// A segment of a piece: `(x, y]`, the certified signs at its ends, and how many halvings
 /// of a de Casteljau run's rest made it.
@@ -545,10 +581,13 @@ pub(crate) struct PieceIsolator<'c> {
     /// the number of halvings that made it.
     segments: SmallVec<[Segment; 4]>,
     /// The de Casteljau run on the current segment, with that segment's end, its sign and
-    /// halvings.
-    fast: Option<(DdBernstein<'c>, f64, i8, u32)>,
+    /// halvings; a descended run ([`descend`]) also carries the tier and depth its node had,
+    /// where the rest it hands back resumes.
+    fast: Option<FastRun<'c>>,
     stack: SmallVec<[Node; 16]>,
     nodes: u32,
+    /// Nodes classified at a wide tier (a wide Taylor shift each, the costly ones).
+    wide_nodes: u32,
     used_big: bool,
     sc: Scratch,
 }
@@ -579,6 +618,7 @@ impl<'c> PieceIsolator<'c> {
             fast: None,
             stack: SmallVec::new(),
             nodes: 0,
+            wide_nodes: 0,
             used_big: false,
             sc: Scratch::default(),
         }
@@ -588,12 +628,18 @@ impl<'c> PieceIsolator<'c> {
     /// [`RootStats::multiprecision_pieces`] once when a tier above double-double was used.
     pub(crate) fn next(&mut self, stats: &mut RootStats) -> Option<Outcome> {
         loop {
-            if let Some((run, y, s_y, halvings)) = &mut self.fast {
+            if let Some((run, y, s_y, halvings, descended)) = &mut self.fast {
                 match run.next(stats) {
                     Some(DdOutcome::Bracket(b)) => return Some(Outcome::Bracket(b)),
                     Some(DdOutcome::Handoff { t_a, s_a }) => {
-                        let (y, s_y, halvings) = (*y, *s_y, *halvings);
+                        let (y, s_y, halvings, descended) = (*y, *s_y, *halvings, *descended);
                         self.fast = None;
+                        if let Some((tier, depth)) = descended {
+                            if t_a < y {
+                                self.stack.push((t_a, y, s_a, s_y, tier, depth, false));
+                            }
+                            continue;
+                        }
                         // A fresh run on each half of the rest: its bound M shrinks with the
                         // segment's distance from 0 (as the f64 path's restarts do), up to
                         // SEGMENT_HALVINGS times; then the per-node tiers take the rest.
@@ -605,7 +651,9 @@ impl<'c> PieceIsolator<'c> {
                                 self.segments.push((m, y, s_m, s_y, halvings + 1));
                                 self.segments.push((t_a, m, s_a, s_m, halvings + 1));
                             }
-                            None if t_a < y => self.stack.push((t_a, y, s_a, s_y, Tier::Dd, 0)),
+                            None if t_a < y => {
+                                self.stack.push((t_a, y, s_a, s_y, Tier::Dd, 0, true))
+                            }
                             None => {}
                         }
                     }
@@ -615,13 +663,13 @@ impl<'c> PieceIsolator<'c> {
             if let Some(outcome) = self.next_node(stats) {
                 return Some(outcome);
             }
-            if !self.stack.is_empty() {
+            if self.fast.is_some() || !self.stack.is_empty() {
                 continue;
             }
             let (x, y, s_x, s_y, halvings) = self.segments.pop()?;
             match DdBernstein::new(self.c, (x, y), (s_x, s_y), dd_sign) {
-                Some(run) => self.fast = Some((run, y, s_y, halvings)),
-                None => self.stack.push((x, y, s_x, s_y, Tier::Dd, 0)),
+                Some(run) => self.fast = Some((run, y, s_y, halvings, None)),
+                None => self.stack.push((x, y, s_x, s_y, Tier::Dd, 0, true)),
             }
         }
     }
@@ -630,16 +678,17 @@ impl<'c> PieceIsolator<'c> {
     /// empty.
     fn next_node(&mut self, stats: &mut RootStats) -> Option<Outcome> {
         let c = self.c;
-        while let Some((x, y, s_x, s_y, tier, depth)) = self.stack.pop() {
+        while let Some((x, y, s_x, s_y, tier, depth, may_descend)) = self.stack.pop() {
             if self.nodes >= MAX_NODES || depth >= MAX_DEPTH {
                 return Some(Outcome::Undecided(x, y));
             }
             self.nodes += 1;
-            if let Tier::Big(_) = tier
-                && !self.used_big
-            {
-                self.used_big = true;
-                stats.multiprecision_pieces += 1;
+            if let Tier::Big(_) = tier {
+                self.wide_nodes += 1;
+                if !self.used_big {
+                    self.used_big = true;
+                    stats.multiprecision_pieces += 1;
+                }
             }
             let class = if c.len() == 2 {
                 // Degree 1: the end signs decide.
@@ -651,16 +700,24 @@ impl<'c> PieceIsolator<'c> {
                 Class::Empty => {}
                 Class::One => return Some(Outcome::Bracket(Bracket::new(x, y, s_x))),
                 Class::Hopeless => match tier.next() {
-                    Some(t) => self.stack.push((x, y, s_x, s_y, t, depth)),
+                    Some(t) => self.stack.push((x, y, s_x, s_y, t, depth, may_descend)),
                     None => return Some(Outcome::Undecided(x, y)),
                 },
                 Class::Split => {
+                    if let Tier::Big(bits) = tier
+                        && may_descend
+                        && let Some(run) = descend(c, (x, y), (s_x, s_y), bits, &self.sc.big.1)
+                    {
+                        // The caller's loop drains the run before this stack.
+                        self.fast = Some((run, y, s_y, SEGMENT_HALVINGS, Some((tier, depth))));
+                        return None;
+                    }
                     stats.subdivisions += 1;
                     match split_point(c, x, y, tier, depth) {
                         Some((m, s_m, t_m)) => {
                             let t = tier.max(t_m);
-                            self.stack.push((m, y, s_m, s_y, t, depth + 1));
-                            self.stack.push((x, m, s_x, s_m, t, depth + 1));
+                            self.stack.push((m, y, s_m, s_y, t, depth + 1, may_descend));
+                            self.stack.push((x, m, s_x, s_m, t, depth + 1, may_descend));
                         }
                         None => return Some(Outcome::Undecided(x, y)),
                     }
@@ -669,6 +726,83 @@ impl<'c> PieceIsolator<'c> {
         }
         None
     }
+}
+
+/// The double-double de Casteljau run on a node a wide tier of `bits` bits has just split
+/// (`big` its scaled Bernstein coefficients `B̂ᵢ` from [`classify`], from the end nearer 0),
+/// so that the node's subtree costs additions in double-double instead of a wide Taylor shift
+/// per node. `bᵢ = B̂ᵢ / C(n, i)` in the wide format (`C(n, i)` exact), rounded to
+/// double-double. Error handed down, per coefficient: [`classify`]'s bound `γ(k)·C(n, i)·M`
+/// divided by `C(n, i)`, the division's rounding (`u·|bᵢ|`) and the conversion's
+/// ([`big_to_dd`], `2^-104·|bᵢ|`). `None` when `M` or a coefficient leaves `f64`'s range.
+fn descend<'c>(
+    c: &'c [f64],
+    (x, y): (f64, f64),
+    s: (i8, i8),
+    bits: usize,
+    big: &[BigFloat],
+) -> Option<DdBernstein<'c>> {
+    let n = c.len() - 1;
+    if big.len() != n + 1 {
+        return None;
+    }
+    let ar = BigArith { bits };
+    let (Mag::F64(mag), _) = magnitude(c, x.abs().max(y.abs()), true)? else {
+        return None;
+    };
+    // C(n, i) exactly: every intermediate C(n, i − 1)·(n − i + 1) < 2^(n + 64).
+    let exact_bits = (n + 128).div_ceil(64) * 64;
+    let mut binom = big_from_f64(1.0);
+    let mut b: SmallVec<[Dd; 64]> = SmallVec::with_capacity(n + 1);
+    let mut largest = 0.0f64;
+    for (i, bi) in big.iter().enumerate() {
+        if i > 0 {
+            binom = binom
+                .mul(&big_from_f64((n - i + 1) as f64), exact_bits, RM)
+                .div(&big_from_f64(i as f64), exact_bits, RM);
+        }
+        let v = big_to_dd(&bi.div(&binom, bits, RM))?;
+        largest = largest.max(v.hi.abs() + v.lo.abs());
+        b.push(v);
+    }
+    if x < 0.0 {
+        // Shifted from y towards x: coefficient i belongs to t = y + (x − y)·i/n.
+        b.reverse();
+    }
+    let k = 4 * n + 1;
+    let e0 = (2.0 * k as f64 * ar.unit() * mag + (ar.unit() + 2f64.powi(-104)) * largest)
+        * (1.0 + 8.0 * f64::EPSILON)
+        + DD_UNDERFLOW;
+    DdBernstein::from_bernstein(c, (x, y), s, b, e0, dd_sign)
+}
+
+/// `v` rounded to a double-double within `2^-104·|v|` (plus underflow, counted by the caller as
+/// [`DD_UNDERFLOW`]): the top 128 bits of the mantissa, the upper word rounded to `f64` and
+/// the exact remainder rounded to `f64`. `None` outside `f64`'s exponent range.
+fn big_to_dd(v: &BigFloat) -> Option<Dd> {
+    if v.is_zero() {
+        return Some(Dd::from_f64(0.0));
+    }
+    // astro-float: |v| = (m_top·2^64 + m_next + …)·2^(e − 128), words least significant first.
+    let (m, _, sign, e, _) = v.as_raw_parts()?;
+    let top = *m.last()?;
+    let next = if m.len() >= 2 { m[m.len() - 2] } else { 0 };
+    let scale_exp = e - 64;
+    if !(-900..=900).contains(&scale_exp) {
+        return None;
+    }
+    let hi = top as f64;
+    // hi ≤ 2^64 is an integer, so the remainder is exact in i128 (|rem| ≤ 2^75).
+    let whole = (u128::from(top) << 64) | u128::from(next);
+    let rem = whole as i128 - ((hi as u128) << 64) as i128;
+    let lo = rem as f64 * 2f64.powi(-64);
+    let scale = 2f64.powi(scale_exp);
+    let (h, l) = two_sum(hi * scale, lo * scale);
+    Some(if sign == astro_float::Sign::Neg {
+        Dd::from_pair(-h, -l)
+    } else {
+        Dd::from_pair(h, l)
+    })
 }
 
 /// A point strictly inside `(x, y)` with a certified sign at some tier from `tier` up: the
@@ -742,29 +876,48 @@ fn binade_mid(x: f64, y: f64, depth: u32) -> Option<f64> {
 // ---------------------------------------------------------------------------------------
 // Refinement.
 
-/// Bisection of a certified bracket with the signs of [`point_sign`], from where the `f64`
-/// refinement got stuck, to width `x_tol` (or adjacent `f64` numbers). `None` when some
-/// midpoint and its neighbours cannot be signed even at [`MAX_BITS`] (then the caller refines
-/// exactly). Counts [`RootStats::adaptive_refines`].
+/// Refinement in adaptive precision of a bracket on which the `f64` refinement got stuck,
+/// to the tolerance `tol` (or adjacent `f64` numbers): the Illinois loop of `refine.rs`
+/// ([`illinois_by`]) with signs certified at the tiers of [`point_sign`] and approximate
+/// values from the same evaluations placing the trial points. Why not bisection: a bracket
+/// from isolation is ~`10⁻⁴` wide and needs ~30 halvings to `10⁻¹²`, each a wide Horner
+/// evaluation; regula falsi converges superlinearly on the simple roots these brackets hold
+/// (Chebyshev T₈₀: 63 % of the query's instructions were this bisection). A trial point no
+/// tier can sign costs one bisection step at [`split_point`]'s alternatives. `None` when
+/// some midpoint and its neighbours cannot be signed even at [`MAX_BITS`] (then the caller
+/// refines exactly). Counts [`RootStats::adaptive_refines`].
 ///
 /// # Accuracy
 /// The bracket keeps certified opposite end signs, so the root stays inside; the value
-/// returned is the midpoint of a bracket no wider than `x_tol` (or the lower of two adjacent
-/// numbers), within `x_tol` of the root.
-pub(crate) fn refine_wide(c: &[f64], b: Bracket, x_tol: f64, stats: &mut RootStats) -> Option<f64> {
+/// returned is within `tol.on(lo, hi)` of the root, as [`illinois_by`] promises.
+pub(crate) fn refine_wide(
+    c: &[f64],
+    b: Bracket,
+    tol: Tolerance,
+    stats: &mut RootStats,
+) -> Option<f64> {
     stats.adaptive_refines += 1;
-    let Bracket {
-        mut lo,
-        mut hi,
-        s_lo,
-        ..
-    } = b;
     let mut tier = Tier::Dd;
+    let mut b = b;
     loop {
-        if hi - lo <= x_tol * (1.0 - f64::EPSILON) || hi <= lo.next_up() {
-            let m = lo + 0.5 * (hi - lo);
-            return Some(if m > lo && m < hi { m } else { lo });
-        }
+        // Values at the ends, for the first trial point (their signs are certified already).
+        stats.refine_evals += 2;
+        b.f_lo = point_sign_value(c, b.lo, tier).2;
+        b.f_hi = point_sign_value(c, b.hi, tier).2;
+        let eval = |x: f64| {
+            let (s, t, v) = point_sign_value(c, x, tier);
+            tier = tier.max(t);
+            (v, s)
+        };
+        let bracket = match illinois_by(b, tol, stats, eval) {
+            IllinoisEnd::Root(r) => return Some(r),
+            // Regula falsi converges *onto* a root: when no tier signs the trial point, it
+            // is often the root itself, exact in f64 (Vieta-built polynomials). One exact
+            // evaluation tells; the bracket holds one distinct root, so a zero is that root.
+            IllinoisEnd::Undecided { x, .. } if is_exact_root(c, x) => return Some(x),
+            IllinoisEnd::Undecided { bracket, .. } | IllinoisEnd::Exhausted(bracket) => bracket,
+        };
+        let Bracket { lo, hi, s_lo, .. } = bracket;
         let Some((m, s, t)) = split_point(c, lo, hi, tier, 0) else {
             // No point is signed even at MAX_BITS: the midpoint may be the root itself (a
             // stored polynomial with an exact f64 root, as Vieta's products of f64 roots
@@ -775,11 +928,11 @@ pub(crate) fn refine_wide(c: &[f64], b: Bracket, x_tol: f64, stats: &mut RootSta
         };
         stats.refine_evals += 1;
         tier = t;
-        if s == s_lo {
-            lo = m;
+        b = if s == s_lo {
+            Bracket::new(m, hi, s_lo)
         } else {
-            hi = m;
-        }
+            Bracket::new(lo, m, s_lo)
+        };
     }
 }
 
@@ -797,6 +950,101 @@ mod tests {
     use crate::scalar::{Rat, rat_from_f64};
     use crate::univariate::Poly;
     use num_traits::Signed;
+
+    /// `big_to_dd` keeps `2^-104` relative accuracy: wide values that are not double-doubles
+    /// (products of `f64` at 256 bits, thirds), of both signs, across the exponent range it
+    /// accepts, come back within `2^-104·|v|` (checked in the wide format).
+    #[test]
+    fn wide_values_round_to_double_double_within_their_bound() {
+        let third = big_from_f64(1.0).div(&big_from_f64(3.0), 256, RM);
+        for (k, scale) in [
+            1.0,
+            -1.0,
+            7.5e250,
+            -3.3e-250,
+            2f64.powi(63),
+            1.0 - f64::EPSILON / 4.0,
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            for factor in [
+                third.clone(),
+                big_from_f64(0.1).mul(&big_from_f64(1.0 / 7.0), 256, RM),
+            ] {
+                let v = factor.mul(&big_from_f64(scale), 256, RM);
+                let d = big_to_dd(&v).expect("in range");
+                let back = big_from_f64(d.hi).add(&big_from_f64(d.lo), EXACT_PAIR_BITS, RM);
+                let err = back.sub(&v, 512, RM).abs();
+                let allowed = v.abs().mul(&big_from_f64(2f64.powi(-104)), 512, RM);
+                assert!(err.sub(&allowed, 512, RM).is_negative(), "case {k}: {v}");
+            }
+        }
+        assert_eq!(big_to_dd(&big_from_f64(0.0)), Some(Dd::from_f64(0.0)));
+        assert!(big_to_dd(&big_from_f64(1e300).mul(&big_from_f64(1e300), 256, RM)).is_none());
+    }
+
+    /// Issue 11: Chebyshev `T₈₀`'s power-basis coefficients reach `2⁷⁹`, so near ±1 its
+    /// nodes need the 256-bit tier; the descent hands each split node's subtree to
+    /// double-double. Every root is certified in its bracket (the exact roots
+    /// `cos((2k − 1)π/160)`, all coefficients being exact in `f64`), and the wide tier
+    /// classifies a handful of nodes, not one per node of the tree (fails if the descent is
+    /// removed: each of the pieces' nodes is then classified wide). Then each bracket is
+    /// refined in adaptive precision with a few certified signs per root.
+    #[test]
+    fn chebyshev_80_descends_from_the_wide_tier_and_refines_by_regula_falsi() {
+        let n = 80;
+        let t = crate::testutil::chebyshev(n);
+        let c = t.to_f64();
+        assert_eq!(c.to_rat().as_ref(), Some(&t), "coefficients exact in f64");
+        let c = c.coeffs();
+        let mut stats = RootStats::default();
+        let (mut brackets, mut wide_nodes) = (Vec::new(), 0);
+        // The two sides of 0 separately, as the certified driver's pieces are.
+        for (lo, hi) in [(-1.5, -0.25), (0.25, 1.5)] {
+            let s = |x: f64| point_sign(c, x, Tier::Dd).0;
+            let mut piece = PieceIsolator::new(c, (lo, hi), (s(lo), s(hi)), &mut stats);
+            while let Some(outcome) = piece.next(&mut stats) {
+                match outcome {
+                    Outcome::Bracket(b) => brackets.push(b),
+                    Outcome::Undecided(x, y) => panic!("undecided ({x}, {y}]"),
+                }
+            }
+            wide_nodes += piece.wide_nodes;
+        }
+        let want: Vec<f64> = crate::testutil::chebyshev_roots(n)
+            .into_iter()
+            .filter(|r| r.abs() > 0.25)
+            .collect();
+        assert_eq!(brackets.len(), want.len());
+        for (b, r) in brackets.iter().zip(&want) {
+            // The f64 root is within 2 ulp of the exact cos((2k − 1)π/160).
+            let slack = 4.0 * f64::EPSILON;
+            assert!(
+                b.lo - slack <= *r && *r <= b.hi + slack,
+                "{r} outside {b:?}"
+            );
+        }
+        assert!(stats.multiprecision_pieces >= 1, "{stats:?}");
+        assert!(
+            wide_nodes <= 8,
+            "{wide_nodes} nodes classified at a wide tier"
+        );
+
+        // Refinement in adaptive precision (issue 11): regula falsi on these simple roots,
+        // not bisection (which needs ~30 signs per root from these brackets to 1e-12).
+        let tol = Tolerance::absolute(1e-12);
+        let mut refine = RootStats::default();
+        for (b, r) in brackets.iter().zip(&want) {
+            let got = refine_wide(c, *b, tol, &mut refine).expect("refined");
+            assert!(
+                (got - r).abs() <= 1e-12 + 4.0 * f64::EPSILON,
+                "{got} vs {r}"
+            );
+        }
+        let per_root = refine.refine_evals as f64 / brackets.len() as f64;
+        assert!(per_root <= 12.0, "{per_root} signs per root");
+    }
 
     /// The right-sized precision of a node width (issue 11) still holds `hi + lo` exactly:
     /// equal to the sum formed at [`EXACT_PAIR_BITS`], which holds any two `f64`, across

@@ -140,22 +140,65 @@ pub(crate) fn half_tol(x_tol: f64) -> f64 {
 /// ends (so the far end closes in), and a bisection step replaces it whenever three steps have
 /// not halved the bracket.
 fn illinois(p: &[f64], b: Bracket, tol: Tolerance, stats: &mut RootStats) -> Refined {
+    let f_lo = if b.f_lo.is_nan() {
+        horner(p, &b.lo)
+    } else {
+        b.f_lo
+    };
+    let f_hi = if b.f_hi.is_nan() {
+        horner(p, &b.hi)
+    } else {
+        b.f_hi
+    };
+    let err = bracket_error_bound(p, b.lo, b.hi);
+    let eval = |x: f64| sign_with(p, x, horner(p, &x), err);
+    match illinois_by(Bracket { f_lo, f_hi, ..b }, tol, stats, eval) {
+        IllinoisEnd::Root(r) => Refined::Root(r),
+        IllinoisEnd::Undecided { bracket, x, delta } => probe_or_stuck(p, bracket, x, delta, stats),
+        IllinoisEnd::Exhausted(bracket) => Refined::Stuck(bracket),
+    }
+}
+
+/// How [`illinois_by`] ended.
+pub(crate) enum IllinoisEnd {
+    /// A value within the tolerance of the root.
+    Root(f64),
+    /// The sign at the trial point `x` could not be certified; the root is in `bracket`
+    /// (and within `delta` of `x` if the signs at `x ± delta` say so).
+    Undecided {
+        bracket: Bracket,
+        x: f64,
+        delta: f64,
+    },
+    /// [`MAX_ITERATIONS`] steps; the root is in the bracket.
+    Exhausted(Bracket),
+}
+
+/// The Illinois loop of [`illinois`] on a certified bracket whose `f_lo`, `f_hi` hold
+/// approximate values of `p` at its ends. `eval(x)` returns an approximate `p(x)` (it only
+/// places the next trial point) and the *certified* sign of `p(x)` (0 when it cannot say),
+/// which alone moves an end: so the root never leaves the bracket, whatever the values'
+/// accuracy. Shared by the `f64` refinement and the adaptive-precision one
+/// (`multiprec::refine_wide`), whose signs come from wider arithmetic.
+pub(crate) fn illinois_by(
+    b: Bracket,
+    tol: Tolerance,
+    stats: &mut RootStats,
+    mut eval: impl FnMut(f64) -> (f64, i8),
+) -> IllinoisEnd {
     let Bracket {
         mut lo,
         mut hi,
         s_lo,
-        f_lo,
-        f_hi,
+        mut f_lo,
+        mut f_hi,
         ..
     } = b;
-    let mut f_lo = if f_lo.is_nan() { horner(p, &lo) } else { f_lo };
-    let mut f_hi = if f_hi.is_nan() { horner(p, &hi) } else { f_hi };
-    let err = bracket_error_bound(p, lo, hi);
     let mut kept = 0i8; // +1: lo moved last, −1: hi moved last
     let mut width_before = hi - lo;
     for it in 0..MAX_ITERATIONS {
         if narrow_enough(lo, hi, tol) {
-            return Refined::Root(midpoint_or_lo(lo, hi));
+            return IllinoisEnd::Root(midpoint_or_lo(lo, hi));
         }
         let delta = half_tol(tol.on(lo, hi));
         let mut x = if it % 3 == 2 && hi - lo > 0.5 * width_before {
@@ -178,9 +221,10 @@ fn illinois(p: &[f64], b: Bracket, tol: Tolerance, stats: &mut RootStats) -> Ref
             x = midpoint(lo, hi);
         }
         stats.refine_evals += 1;
-        let (fx, s) = sign_with(p, x, horner(p, &x), err);
+        let (fx, s) = eval(x);
         if s == 0 {
-            return probe_or_stuck(p, Bracket::new(lo, hi, s_lo), x, delta, stats);
+            let bracket = Bracket::new(lo, hi, s_lo);
+            return IllinoisEnd::Undecided { bracket, x, delta };
         }
         if s == s_lo {
             lo = x;
@@ -198,7 +242,7 @@ fn illinois(p: &[f64], b: Bracket, tol: Tolerance, stats: &mut RootStats) -> Ref
             kept = -1;
         }
     }
-    Refined::Stuck(Bracket::new(lo, hi, s_lo))
+    IllinoisEnd::Exhausted(Bracket::new(lo, hi, s_lo))
 }
 
 /// Newton's method inside the bracket (the safeguard of Press et al., *Numerical Recipes*,
