@@ -13,8 +13,9 @@
 //! `python3` in the same bench run; flint is a reference, never a dependency: without it the
 //! row says why it is missing).
 //!
-//! `PEERS_PROFILE=<corpus>` (`entry`, `eye`, `wilkinson`, `planted`, `quartics`, `kac40`,
-//! `cheb80`) runs only `poly` on that corpus, once, and prints its statistics: the
+//! `PEERS_PROFILE=<corpus>` (`entry`, `eye`, `wilkinson`, `planted`, `quartics`, or a growth
+//! corpus `kac<d>`, `cheb<d>`, `planted<d>`) runs only `poly` on that corpus, once, and
+//! prints its statistics: the
 //! load-independent instruction count comes from running that under
 //! `valgrind --tool=callgrind --toggle-collect='*run_poly_only*'`.
 
@@ -364,18 +365,26 @@ fn target_corpus(name: &str) -> Option<Corpus> {
                 false,
             )
         },
-        "kac40" => Corpus::new(
-            "Kac degree 40, all roots",
-            queries(degree_cases(Family::Kac, 40, 3, 14)),
-            false,
-        ),
-        "cheb80" => Corpus::new(
-            "Chebyshev degree 80, all roots",
-            queries(degree_cases(Family::Chebyshev, 80, 1, 14)),
-            false,
-        ),
-        _ => return None,
+        _ => return growth_corpus(name),
     })
+}
+
+/// A growth-with-degree corpus by name: `kac<d>`, `cheb<d>` or `planted<d>` (the same
+/// polynomials as the growth tables: 3 samples, Chebyshev 1, seed 14).
+fn growth_corpus(name: &str) -> Option<Corpus> {
+    let (family, samples, digits) = [
+        ("kac", Family::Kac, 3),
+        ("cheb", Family::Chebyshev, 1),
+        ("planted", Family::Planted, 3),
+    ]
+    .into_iter()
+    .find_map(|(prefix, family, samples)| Some((family, samples, name.strip_prefix(prefix)?)))?;
+    let d: usize = digits.parse().ok().filter(|&d| d >= 1)?;
+    Some(Corpus::new(
+        format!("{} degree {d}, all roots", family.name()),
+        queries(degree_cases(family, d, samples, 14)),
+        false,
+    ))
 }
 
 /// `poly` alone on one corpus, once (the function callgrind's `--toggle-collect` selects).
@@ -395,7 +404,7 @@ fn main() {
         let name = name.to_string_lossy();
         let Some(corpus) = target_corpus(&name) else {
             eprintln!(
-                "PEERS_PROFILE: unknown corpus {name:?} (entry, eye, wilkinson, planted, quartics, kac40, cheb80)"
+                "PEERS_PROFILE: unknown corpus {name:?} (entry, eye, wilkinson, planted, quartics, kac<d>, cheb<d>, planted<d>)"
             );
             std::process::exit(2);
         };
