@@ -59,8 +59,11 @@ const PARALLEL_MIN_ITEMS: usize = 4096;
 /// the brute-force one.
 pub const PRUNE_SLACK_REL: f64 = 2e-9;
 
-/// One node of the flattened tree.
+/// One node of the flattened tree: 57 bytes of data in one 64-byte cache line, aligned so
+/// that no node straddles two lines (a traversal step then fetches one line per node; the
+/// 132 861 nodes of the largest sphereflake, 8.5 MB, do not fit in cache).
 #[derive(Clone, Copy, Debug)]
+#[repr(align(64))]
 struct Node {
     bounds: Bounds3,
     /// Leaf: first item in [`Bvh::order`]. Inner: index of the second child (the first child
@@ -71,6 +74,8 @@ struct Node {
     /// Split axis of an inner node.
     axis: u8,
 }
+
+const _: () = assert!(size_of::<Node>() == 64, "a node is one cache line");
 
 /// What `--stats` reports about a hierarchy.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -222,14 +227,8 @@ impl Bvh {
         }
         let slab_ray = SlabRay::new(ray);
         let dir_neg = [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0];
-        // Whether the ray enters `node` before the nearest hit so far (the pruning test).
-        let crosses = |node: &Node, t_max: f64| -> bool {
-            node.bounds
-                .slab(&slab_ray, range.start, range.end)
-                .is_some_and(|(near, far)| {
-                    near <= t_max + PRUNE_SLACK_REL * (near.abs() + (far - near))
-                })
-        };
+        let (start, end) = (range.start, range.end);
+        let crosses = |node: &Node, t_max: f64| crosses(node, &slab_ray, start..end, t_max);
         *visits += 1;
         if !crosses(root, t_max) {
             return;
@@ -326,6 +325,16 @@ impl Bvh {
         });
         found
     }
+}
+
+/// Whether the ray enters `node` in `range` before `t_max`, the nearest hit so far, up to
+/// [`PRUNE_SLACK_REL`] (the pruning test of [`Bvh::traverse`]). Always inlined: it is the
+/// traversal's inner loop, and as a call it cost more than the slab test itself.
+#[inline(always)]
+fn crosses(node: &Node, ray: &SlabRay, range: Range<f64>, t_max: f64) -> bool {
+    node.bounds
+        .slab(ray, range.start, range.end)
+        .is_some_and(|(near, far)| near <= t_max + PRUNE_SLACK_REL * (near.abs() + (far - near)))
 }
 
 /// Whether a hit of `item` at `t` replaces `best` (`None`: the first hit, kept when below
