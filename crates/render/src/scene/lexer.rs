@@ -160,13 +160,24 @@ impl<'a> Iterator for TextLines<'a> {
 /// for this span on every load (issue 12).
 pub(crate) fn end_position(text: &str, file: Arc<Path>) -> Span {
     let bytes = text.as_bytes();
-    let (mut line, mut last_end) = (1u32, 0);
-    for (i, &b) in bytes.iter().enumerate() {
-        if b == b'\n' || (b == b'\r' && bytes.get(i + 1) != Some(&b'\n')) {
-            line = line.saturating_add(1);
-            last_end = i + 1;
+    let (line, last_end) = if bytes.contains(&b'\r') {
+        let (mut line, mut last_end) = (1u32, 0);
+        for (i, &b) in bytes.iter().enumerate() {
+            if b == b'\n' || (b == b'\r' && bytes.get(i + 1) != Some(&b'\n')) {
+                line = line.saturating_add(1);
+                last_end = i + 1;
+            }
         }
-    }
+        (line, last_end)
+    } else {
+        // `\n` only: a count the compiler vectorises.
+        let breaks = bytes.iter().filter(|&&b| b == b'\n').count();
+        let line = u32::try_from(breaks).map_or(u32::MAX, |n| n.saturating_add(1));
+        (
+            line,
+            bytes.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1),
+        )
+    };
     let tail = &text[last_end..];
     let tail = if last_end == 0 {
         tail.strip_prefix('\u{feff}').unwrap_or(tail)
@@ -537,6 +548,7 @@ mod tests {
             "s 0 0 0 1",
             "s 0 0 0 1\n",
             "a\r\nb\rc\nd",
+            "a\nb\n\nc",
             "a\r",
             "a\r\n\r\n",
             "\u{feff}v é",
