@@ -8,7 +8,8 @@
 # each renderer's peak memory (/usr/bin/time -v), and an n x n torus grid over a plane at 400 x 400
 # (generated here in both languages; n = 3, 10, 30, 60). Times in seconds: wall and CPU (user +
 # system), ratios ours / POV-Ray.
-# VS_POVRAY_ONLY=classic|spd|grid runs one section; SPD_SCENES="gears mount" some SPD scenes.
+# VS_POVRAY_ONLY=classic|spd|grid runs one section; SPD_SCENES="gears mount" some SPD scenes;
+# VS_POVRAY_RUNS and VS_POVRAY_BEFORE (SPD and grid sections): see `compare` below.
 # Both renderers get every core (`nproc`). Prints each wall time and the ratio ours / POV-Ray,
 # then the tracing phase alone: POV-Ray's "Trace Time" and ours (`--stats`, "trace").
 # Without POV-Ray it says so and exits 0. Images go to a temporary directory, printed at the end.
@@ -76,20 +77,58 @@ timed() { # LOG CMD... -> prints "WALL CPU MB"
                 END { printf "%.3f %.3f %.1f\n", w, c, m }' "$log"
 }
 
+# VS_POVRAY_RUNS=N runs each comparison N times, interleaved (POV-Ray, [before,] ours, then
+# again), and prints medians: of each time, and of the per-run ratios. VS_POVRAY_BEFORE=BINARY
+# times a second `render` (an older build) in the same runs, printed as "before".
+runs=${VS_POVRAY_RUNS:-1}
+before=${VS_POVRAY_BEFORE:-}
+
+median() { # NUMBERS... -> their median
+    printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END {
+        print (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2) }'
+}
+
 compare() { # NAME OURS-SCENE POV-SCENE SIZE
-    local name=$1 ours=$2 pov=$3 px=$4
-    read -r pw pc pm < <(timed "$out/$name-povray.log" povray +I"$pov" +L"$(dirname "$pov")" \
-        +O"$out/$name-povray.png" +W"$px" +H"$px" -A -D +WT"$threads")
-    read -r ow oc om < <(timed "$out/$name-ours.log" "$render" "$ours" -o "$out/$name-ours.png" \
-        --size "${px}x${px}" --threads "$threads" --stats)
-    awk -v s="$name" -v pw="$pw" -v ow="$ow" -v pc="$pc" -v oc="$oc" -v pm="$pm" -v om="$om" \
-        'BEGIN { printf "%-17s %9.3f %9.3f %7.2f %9.3f %9.3f %7.2f %8.1f %8.1f\n",
-                 s, pw, ow, ow / pw, pc, oc, oc / pc, pm, om }'
+    local name=$1 ours=$2 pov=$3 px=$4 r
+    local -a pw=() pc=() pm=() ow=() oc=() om=() bw=() bc=() bm=() rw=() rc=() brw=() brc=()
+    for ((r = 0; r < runs; r++)); do
+        read -r pw[r] pc[r] pm[r] < <(timed "$out/$name-povray.log" povray +I"$pov" \
+            +L"$(dirname "$pov")" +O"$out/$name-povray.png" +W"$px" +H"$px" -A -D +WT"$threads")
+        if [ -n "$before" ]; then
+            read -r bw[r] bc[r] bm[r] < <(timed "$out/$name-before.log" "$before" "$ours" \
+                -o "$out/$name-before.png" --size "${px}x${px}" --threads "$threads" --stats)
+            brw[r]=$(awk -v a="${bw[r]}" -v b="${pw[r]}" 'BEGIN { print a / b }')
+            brc[r]=$(awk -v a="${bc[r]}" -v b="${pc[r]}" 'BEGIN { print a / b }')
+        fi
+        read -r ow[r] oc[r] om[r] < <(timed "$out/$name-ours.log" "$render" "$ours" \
+            -o "$out/$name-ours.png" --size "${px}x${px}" --threads "$threads" --stats)
+        rw[r]=$(awk -v a="${ow[r]}" -v b="${pw[r]}" 'BEGIN { print a / b }')
+        rc[r]=$(awk -v a="${oc[r]}" -v b="${pc[r]}" 'BEGIN { print a / b }')
+    done
+    if [ -n "$before" ]; then
+        printf '%-17s %9.3f %9.3f %9.3f %7.2f %7.2f %9.3f %9.3f %9.3f %7.2f %7.2f %8.1f %8.1f %8.1f\n' \
+            "$name" "$(median "${pw[@]}")" "$(median "${bw[@]}")" "$(median "${ow[@]}")" \
+            "$(median "${brw[@]}")" "$(median "${rw[@]}")" \
+            "$(median "${pc[@]}")" "$(median "${bc[@]}")" "$(median "${oc[@]}")" \
+            "$(median "${brc[@]}")" "$(median "${rc[@]}")" \
+            "$(median "${pm[@]}")" "$(median "${bm[@]}")" "$(median "${om[@]}")"
+    else
+        printf '%-17s %9.3f %9.3f %7.2f %9.3f %9.3f %7.2f %8.1f %8.1f\n' "$name" \
+            "$(median "${pw[@]}")" "$(median "${ow[@]}")" "$(median "${rw[@]}")" \
+            "$(median "${pc[@]}")" "$(median "${oc[@]}")" "$(median "${rc[@]}")" \
+            "$(median "${pm[@]}")" "$(median "${om[@]}")"
+    fi
 }
 
 header() { # TITLE
-    printf '%-17s %9s %9s %7s %9s %9s %7s %8s %8s\n' "$1" "POV wall" "our wall" ratio \
-        "POV CPU" "our CPU" ratio "POV MB" "our MB"
+    if [ -n "$before" ]; then
+        printf '%-17s %9s %9s %9s %7s %7s %9s %9s %9s %7s %7s %8s %8s %8s\n' "$1" "POV wall" \
+            "bef wall" "our wall" "bef/POV" "our/POV" "POV CPU" "bef CPU" "our CPU" "bef/POV" \
+            "our/POV" "POV MB" "bef MB" "our MB"
+    else
+        printf '%-17s %9s %9s %7s %9s %9s %7s %8s %8s\n' "$1" "POV wall" "our wall" ratio \
+            "POV CPU" "our CPU" ratio "POV MB" "our MB"
+    fi
 }
 
 if [ "$only" = all ] || [ "$only" = spd ]; then
@@ -130,4 +169,4 @@ for n in 3 10 30 60; do
     compare "grid-$((n * n))" "$out/grid-$n.scene" "$out/grid-$n.pov" 400
 done
 fi
-echo "$threads threads each; images and logs in $out"
+echo "$threads threads each, $runs run(s) each (medians); images and logs in $out"

@@ -19,9 +19,8 @@ pub use bvh::{
 /// Queries answer as a loop over all items in index order would.
 #[derive(Clone, Debug, Default)]
 pub struct Aggregate {
+    /// The bounded items, named by their item index ([`Bvh::relabel`]).
     bvh: Bvh,
-    /// Item index of each BVH item, ascending (so BVH order ties agree with item order).
-    bounded: Vec<u32>,
     /// Items without a finite box, ascending.
     unbounded: Vec<u32>,
 }
@@ -42,11 +41,9 @@ impl Aggregate {
                 _ => unbounded.push(i as u32),
             }
         }
-        Aggregate {
-            bvh: Bvh::new(&bvh_boxes),
-            bounded,
-            unbounded,
-        }
+        let mut bvh = Bvh::new(&bvh_boxes);
+        bvh.relabel(&bounded);
+        Aggregate { bvh, unbounded }
     }
 
     /// The hierarchy's size and build time.
@@ -68,15 +65,7 @@ impl Aggregate {
         visits: &mut u64,
         mut hit: impl FnMut(u32) -> Option<(f64, H)>,
     ) -> Option<(u32, f64, H)> {
-        let mut best = self
-            .bvh
-            .nearest(
-                ray,
-                range.clone(),
-                visits,
-                |k| hit(self.bounded[k as usize]),
-            )
-            .map(|(k, t, h)| (self.bounded[k as usize], t, h));
+        let mut best = self.bvh.nearest(ray, range.clone(), visits, &mut hit);
         for &i in &self.unbounded {
             if let Some((t, h)) = hit(i)
                 && bvh::precedes(i, t, &best, range.end)
@@ -96,8 +85,6 @@ impl Aggregate {
         visits: &mut u64,
         mut blocked: impl FnMut(u32) -> bool,
     ) -> bool {
-        self.bvh
-            .any(ray, range, visits, |k| blocked(self.bounded[k as usize]))
-            || self.unbounded.iter().any(|&i| blocked(i))
+        self.bvh.any(ray, range, visits, &mut blocked) || self.unbounded.iter().any(|&i| blocked(i))
     }
 }

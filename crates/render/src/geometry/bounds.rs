@@ -103,31 +103,30 @@ impl Bounds3 {
 
     /// The slab test against a [`SlabRay`] (prepared once per ray by a hierarchy): the
     /// interval `(t0, t1)` where the ray is inside the box, clipped to `start..end`, or `None`.
-    /// Same accuracy as [`Bounds3::intersect_ray`]. Stops at the first slab that empties the
-    /// interval.
+    /// Same accuracy as [`Bounds3::intersect_ray`].
+    ///
+    /// Without a branch per slab, one comparison at the end: each slab's ends are ordered, and
+    /// the running `max`/`min` taken, by `if a > b` selects, which keep the first value when
+    /// the other is NaN (origin on a slab plane with a zero direction component), so a NaN
+    /// slab does not clip. The answer is that of a loop stopping at the first slab that
+    /// empties the interval (the interval only narrows from slab to slab), without that
+    /// loop's data-dependent branches (issue 12: 5 % of the CPU time of the sphereflake).
     #[inline(always)]
     pub fn slab(&self, ray: &SlabRay, start: f64, end: f64) -> Option<(f64, f64)> {
+        let lo = (self.min - ray.origin) * ray.inv;
+        let hi = (self.max - ray.origin) * ray.inv;
         let (mut t0, mut t1) = (start, end);
         for k in 0..3 {
-            let (o, inv) = (ray.origin[k], ray.inv[k]);
-            let mut near = (self.min[k] - o) * inv;
-            let mut far = (self.max[k] - o) * inv;
-            if near > far {
-                std::mem::swap(&mut near, &mut far);
-            }
-            far *= FAR_SCALE;
-            // NaN-tolerant: a NaN slab (origin on the plane, direction zero) does not clip.
-            if near > t0 {
-                t0 = near;
-            }
-            if far < t1 {
-                t1 = far;
-            }
-            if t0 > t1 {
-                return None;
-            }
+            let (a, b) = (lo[k], hi[k]);
+            // Swapped when `a > b` (a negative direction); a NaN end is not swapped, and then
+            // neither end clips below.
+            let (near, far) = if a > b { (b, a) } else { (a, b) };
+            let far = far * FAR_SCALE;
+            t0 = if near > t0 { near } else { t0 };
+            t1 = if far < t1 { far } else { t1 };
         }
-        Some((t0, t1))
+        // Written as `t0 > t1` (not `t0 <= t1`), so a NaN range answers as the loop did.
+        if t0 > t1 { None } else { Some((t0, t1)) }
     }
 }
 

@@ -47,8 +47,17 @@ impl Transform {
         ))
     }
 
-    /// `self ∘ other`: apply `other` first.
+    /// `self ∘ other`: apply `other` first. With an identity on either side the other map is
+    /// returned as it is (the product would be the same matrix, its inverse recomputed): every
+    /// object of an NFF file composes identities, and the inverse cost more than the parse of
+    /// its line (issue 12).
     pub fn compose(&self, other: &Transform) -> Option<Transform> {
+        if self.is_identity() {
+            return Some(*other);
+        }
+        if other.is_identity() {
+            return Some(*self);
+        }
         Transform::new(self.m * other.m)
     }
 
@@ -104,5 +113,26 @@ impl Transform {
     /// The box holding the image of `b`.
     pub fn apply_bounds(&self, b: &Bounds3) -> Bounds3 {
         b.transformed(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Composing with the identity, now a shortcut (issue 12), gives the map the product
+    /// gives, on either side.
+    #[test]
+    fn compose_with_the_identity_is_the_product() {
+        let m = DAffine3::from_mat3_translation(
+            DMat3::from_rotation_z(0.3) * DMat3::from_diagonal(DVec3::new(1.0, 2.0, 0.5)),
+            DVec3::new(1.0, -2.0, 3.0),
+        );
+        let t = Transform::new(m).expect("invertible");
+        let id = Transform::IDENTITY;
+        let product = Transform::new(DAffine3::IDENTITY * m).expect("invertible");
+        assert_eq!(id.compose(&t), Some(product), "identity first");
+        let product = Transform::new(m * DAffine3::IDENTITY).expect("invertible");
+        assert_eq!(t.compose(&id), Some(product), "identity second");
     }
 }

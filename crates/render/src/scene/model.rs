@@ -601,6 +601,11 @@ impl ObjectTransform {
     /// The map `world_from_object`: `T(translate)·Rz·Ry·Rx·S(scale)`; `None` when it is
     /// singular or not finite.
     pub fn world_from_object(&self) -> Option<Transform> {
+        if *self == Self::default() {
+            // No Scale/Rotate/Translate (every NFF object): the identity, without three
+            // rotations' sines and cosines and an inverse per object (issue 12).
+            return Some(Transform::IDENTITY);
+        }
         let r = self.rotate_deg * (std::f64::consts::PI / 180.0);
         let rot =
             DMat3::from_rotation_z(r.z) * DMat3::from_rotation_y(r.y) * DMat3::from_rotation_x(r.x);
@@ -835,6 +840,19 @@ pub enum SceneInvalid {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The identity placement's shortcut (issue 12) is the map the general formula builds.
+    #[test]
+    fn identity_placement_is_the_general_formula() {
+        let general = Transform::new(glam::DAffine3::from_mat3_translation(
+            glam::DMat3::from_rotation_z(0.0)
+                * glam::DMat3::from_rotation_y(0.0)
+                * glam::DMat3::from_rotation_x(0.0)
+                * glam::DMat3::from_diagonal(DVec3::ONE),
+            DVec3::ZERO,
+        ));
+        assert_eq!(ObjectTransform::default().world_from_object(), general);
+    }
 
     #[test]
     fn object_transform_order_is_scale_rotate_translate() {

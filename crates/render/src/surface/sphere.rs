@@ -13,7 +13,7 @@ use glam::DVec3;
 use super::SurfaceKind;
 use super::implicit::ImplicitFn;
 use crate::geometry::Bounds3;
-use crate::trivariate::{Poly3, RestrictScratch};
+use crate::trivariate::{Eval3, Poly3, RestrictScratch};
 
 /// A sphere, traced through the shared implicit path.
 #[derive(Clone, Debug)]
@@ -26,15 +26,15 @@ pub struct Sphere {
 impl Sphere {
     /// The sphere of radius `radius` (positive, finite) about `center`.
     pub fn new(center: DVec3, radius: f64) -> Self {
-        let c = center;
+        let [c0, cx, cy, cz] = coefficients(center, radius);
         let poly = Poly3::from_terms([
             (1.0, [2, 0, 0]),
             (1.0, [0, 2, 0]),
             (1.0, [0, 0, 2]),
-            (-2.0 * c.x, [1, 0, 0]),
-            (-2.0 * c.y, [0, 1, 0]),
-            (-2.0 * c.z, [0, 0, 1]),
-            (c.length_squared() - radius * radius, [0, 0, 0]),
+            (cx, [1, 0, 0]),
+            (cy, [0, 1, 0]),
+            (cz, [0, 0, 1]),
+            (c0, [0, 0, 0]),
         ]);
         Sphere {
             center,
@@ -67,5 +67,82 @@ impl ImplicitFn for Sphere {
     fn bounds(&self) -> Option<Bounds3> {
         let r = DVec3::splat(self.radius);
         Some(Bounds3::new(self.center - r, self.center + r))
+    }
+
+    /// [`Poly3::eval_grad`] of the stored polynomial, written out: the same products summed in
+    /// the same order (its terms sorted by exponents: constant, `z`, `z²`, `y`, `y²`, `x`,
+    /// `x²`), so the values are those of the generic evaluation (test
+    /// `eval_grad_is_the_generic_evaluation`) — the normal and the hit point's error bound
+    /// unchanged — at a twentieth of its cost: the generic one built power tables and looped
+    /// over the terms, ≈ 550 instructions per shaded hit, 3 % of the SPD sphereflake
+    /// (issue 12).
+    fn eval_grad(&self, p: DVec3) -> Eval3 {
+        let [c0, cx, cy, cz] = coefficients(self.center, self.radius);
+        let a = p.abs();
+        Eval3 {
+            f: c0 + cz * p.z + p.z * p.z + cy * p.y + p.y * p.y + cx * p.x + p.x * p.x,
+            f_abs: c0.abs()
+                + cz.abs() * a.z
+                + a.z * a.z
+                + cy.abs() * a.y
+                + a.y * a.y
+                + cx.abs() * a.x
+                + a.x * a.x,
+            grad: DVec3::new(cx + 2.0 * p.x, cy + 2.0 * p.y, cz + 2.0 * p.z),
+            grad_abs: DVec3::new(
+                cx.abs() + 2.0 * a.x,
+                cy.abs() + 2.0 * a.y,
+                cz.abs() + 2.0 * a.z,
+            ),
+        }
+    }
+}
+
+/// The coefficients of `|p − c|² − r²` expanded: the constant, `x`, `y` and `z` terms (the
+/// quadratic ones are 1).
+fn coefficients(c: DVec3, r: f64) -> [f64; 4] {
+    [
+        c.length_squared() - r * r,
+        -2.0 * c.x,
+        -2.0 * c.y,
+        -2.0 * c.z,
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The written-out gradient is the generic evaluation of the stored polynomial, value for
+    /// value, at random points about random spheres — centres with zero coordinates (whose
+    /// terms the polynomial drops), points on, inside and outside the sphere, far and near.
+    #[test]
+    fn eval_grad_is_the_generic_evaluation() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12);
+        for k in 0..2000 {
+            let mut c = DVec3::new(
+                rng.gen_range(-50.0..50.0),
+                rng.gen_range(-50.0..50.0),
+                rng.gen_range(-50.0..50.0),
+            );
+            if k % 3 == 0 {
+                c[k % 4 % 3] = 0.0;
+            }
+            if k % 7 == 0 {
+                c = DVec3::ZERO;
+            }
+            let r = rng.gen_range(1e-3..20.0);
+            let s = Sphere::new(c, r);
+            let dir = DVec3::new(
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+            )
+            .normalize_or(DVec3::X);
+            let p = c + dir * r * rng.gen_range(0.0..3.0);
+            let (fast, full) = (s.eval_grad(p), s.poly().eval_grad(p));
+            assert_eq!(fast, full, "sphere {c} r {r} at {p}");
+        }
     }
 }
