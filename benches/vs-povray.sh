@@ -8,7 +8,8 @@
 # each renderer's peak memory (/usr/bin/time -v), and an n x n torus grid over a plane at 400 x 400
 # (generated here in both languages; n = 3, 10, 30, 60). Times in seconds: wall and CPU (user +
 # system), ratios ours / POV-Ray.
-# VS_POVRAY_ONLY=classic|spd|grid runs one section; SPD_SCENES="gears mount" some SPD scenes;
+# Then issue 11's near-multiple-sheet surfaces of degree 16 and 20, near and far (see below).
+# VS_POVRAY_ONLY=classic|spd|grid|sheets runs one section; SPD_SCENES="gears mount" some SPD scenes;
 # VS_POVRAY_RUNS and VS_POVRAY_BEFORE (SPD and grid sections): see `compare` below.
 # Both renderers get every core (`nproc`). Prints each wall time and the ratio ours / POV-Ray,
 # then the tracing phase alone: POV-Ray's "Trace Time" and ours (`--stats`, "trace").
@@ -167,6 +168,23 @@ for n in 3 10 30 60; do
             printf "torus { 0.35, 0.12 rotate x*90 translate <%g, %g, 0> pigment { rgb <0.8, 0.3, 0.2> } finish { ambient 0.1 diffuse 0.7 } }\n", i - (n - 1) / 2, j - (n - 1) / 2 }' \
         >"$out/grid-$n.pov"
     compare "grid-$((n * n))" "$out/grid-$n.scene" "$out/grid-$n.pov" 400
+done
+fi
+if [ "$only" = all ] || [ "$only" = sheets ]; then
+# Issue 11: degree-16 and degree-20 powers of the torus quartic minus a constant (sheets that
+# nearly touch; scenes/torus-sheets*.scene, benches/pov/torus-sheets*.pov), from the scene's
+# eye and from 1000 times farther (the view angle narrowed by 1000). VS_POVRAY_SHEETS_SIZE
+# (default 300): POV-Ray's Sturm solver takes minutes at 840 x 840 on the degree-20 scene.
+sheets=${VS_POVRAY_SHEETS_SIZE:-300}
+echo
+header "sheets ($sheets)"
+for deg in 16 20; do
+    compare "sheets$deg" "$root/scenes/torus-sheets$deg.scene" "$here/pov/torus-sheets$deg.pov" "$sheets"
+    sed 's/Eye = (0, -8, 5)/Eye = (0, -8000, 5000)/; s/ViewField = 50/ViewField = 0.05/' \
+        "$root/scenes/torus-sheets$deg.scene" >"$out/far-sheets$deg.scene"
+    sed 's/location <0, -8, 5>/location <0, -8000, 5000>/; s/angle 50/angle 0.05/' \
+        "$here/pov/torus-sheets$deg.pov" >"$out/far-sheets$deg.pov"
+    compare "far-sheets$deg" "$out/far-sheets$deg.scene" "$out/far-sheets$deg.pov" "$sheets"
 done
 fi
 echo "$threads threads each, $runs run(s) each (medians); images and logs in $out"
