@@ -25,6 +25,7 @@ use smallvec::SmallVec;
 
 use crate::bernstein::{self, Bracket, Brackets, Stuck};
 use crate::eval_bound::{certified_sign, certified_sign_pair};
+use crate::exact_oracle::ExactOracle;
 use crate::multiprec::{Outcome, PieceIsolator, Tier, point_sign};
 use crate::root_interval::RootInterval;
 use crate::scalar::{Rat, rat_from_f64};
@@ -73,8 +74,8 @@ pub(crate) struct CertifiedSearch<'p> {
     went_adaptive: bool,
     /// Subdivisions so far, over all runs.
     splits: u32,
-    /// The exact Sturm sequence of the stored polynomial, built on first need.
-    exact: Option<SturmSequence<Rat>>,
+    /// The exact oracle of the stored polynomial, built on first need.
+    exact: Option<ExactOracle>,
     /// The roots found, sorted.
     pub(crate) found: SmallVec<[Found; 2]>,
 }
@@ -115,8 +116,8 @@ impl<'p> CertifiedSearch<'p> {
         search
     }
 
-    /// The exact sequence, when some piece needed it.
-    pub(crate) fn exact_sequence(&self) -> Option<&SturmSequence<Rat>> {
+    /// The exact oracle, when some piece needed it.
+    pub(crate) fn exact_sequence(&self) -> Option<&ExactOracle> {
         self.exact.as_ref()
     }
 
@@ -251,17 +252,15 @@ impl<'p> CertifiedSearch<'p> {
         false
     }
 
-    /// Exact Sturm isolation of `(lo, hi]` (finite `f64` ends); true when the search is over.
+    /// Exact isolation of `(lo, hi]` (finite `f64` ends, [`ExactOracle`]); true when the
+    /// search is over.
     fn exact(&mut self, lo: f64, hi: f64, stats: &mut RootStats) -> bool {
         let p = self.p;
-        let seq = self.exact.get_or_insert_with(|| {
+        let oracle = self.exact.get_or_insert_with(|| {
             stats.exact_fallbacks += 1;
-            p.to_rat()
-                .expect("finite coefficients were checked")
-                .sturm()
-                .expect("non-zero polynomial was checked")
+            ExactOracle::new(&p.to_rat().expect("finite coefficients were checked"))
         });
-        let ivs = exact_isolate(seq, lo, hi, self.first_only, stats);
+        let ivs = oracle.isolate(lo, hi, self.first_only, stats);
         let any = !ivs.is_empty();
         self.found.extend(ivs.into_iter().map(Found::Exact));
         self.first_only && any

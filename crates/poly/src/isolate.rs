@@ -15,9 +15,10 @@
 use std::cell::Cell;
 
 use crate::bernstein::Bracket;
-use crate::certified::{CertifiedSearch, Found, exact_isolate};
+use crate::certified::{CertifiedSearch, Found};
 use crate::closed_form::{linear_smallest, quadratic_smallest};
 use crate::eval_bound::{certified_sign, certified_sign_pair};
+use crate::exact_oracle::{ExactOracle, SquareFreeSign};
 use crate::multiprec::refine_wide;
 use crate::query::with_scratch_poly;
 use crate::refine::{Refined, bisect_rational_to_f64, refine_bracket, refine_exact_f64};
@@ -576,8 +577,8 @@ impl Poly<f64> {
 enum Isolation<'p> {
     /// The default certified search: `f64` brackets, and exact intervals where it needed them.
     Certified(CertifiedSearch<'p>),
-    /// Exact isolation: the exact Sturm sequence and intervals with `f64` ends.
-    Exact(SturmSequence<Rat>, Vec<RootInterval<f64>>),
+    /// Exact isolation: the exact oracle (for refinement) and intervals with `f64` ends.
+    Exact(ExactOracle, Vec<RootInterval<f64>>),
     /// Floating-point Sturm counts: intervals `(lo, hi]` by the counts.
     Heuristic(Vec<RootInterval<f64>>),
 }
@@ -724,8 +725,9 @@ fn exact_smallest(
     }
 }
 
-/// Exact Sturm isolation of the stored polynomial on `(lo, hi]`, bisecting at `f64` points
-/// so that every interval end is an `f64` (seed §3.5.2 with exact counts).
+/// Exact isolation of the stored polynomial on `(lo, hi]` with `f64` interval ends: Descartes
+/// bisection when it is certified square-free, else Sturm counts (seed §3.5.2), both exact
+/// ([`ExactOracle`]).
 fn exact_isolation(
     p: &Poly<f64>,
     lo: f64,
@@ -734,7 +736,7 @@ fn exact_isolation(
     stats: &mut RootStats,
 ) -> Isolation<'static> {
     let q = p.to_rat().expect("finite coefficients were checked");
-    let seq = q.sturm().expect("non-zero polynomial was checked");
+    let oracle = ExactOracle::new(&q);
     // Infinite ends: the exact Cauchy bound holds every root strictly inside (−B, B).
     let bound = q
         .cauchy_bound()
@@ -750,8 +752,8 @@ fn exact_isolation(
     } else {
         bound.min(f64::MAX)
     };
-    let out = exact_isolate(&seq, lo, hi, first_only, stats);
-    Isolation::Exact(seq, out)
+    let out = oracle.isolate(lo, hi, first_only, stats);
+    Isolation::Exact(oracle, out)
 }
 
 /// Refines an exact-isolation interval with exact signs and rounds to `f64`.
@@ -759,7 +761,7 @@ fn exact_isolation(
 /// # Accuracy
 /// Within `max(tol.abs, tol.rel·|root|)` of the root, or one `f64` spacing when that is
 /// smaller.
-fn refine_exact_interval(seq: &SturmSequence<Rat>, iv: &RootInterval<f64>, tol: Tolerance) -> f64 {
+fn refine_exact_interval(seq: &impl SquareFreeSign, iv: &RootInterval<f64>, tol: Tolerance) -> f64 {
     if iv.is_point() {
         return iv.lo;
     }
@@ -770,7 +772,7 @@ fn refine_exact_interval(seq: &SturmSequence<Rat>, iv: &RootInterval<f64>, tol: 
 
 /// Bisection with exact signs of the square-free part, from an open interval `(lo, hi)` with
 /// one root (signs only at `hi` and midpoints), to `f64` accuracy `tol`.
-fn refine_rat_to_f64(seq: &SturmSequence<Rat>, lo: Rat, hi: Rat, tol: Tolerance) -> f64 {
+fn refine_rat_to_f64(seq: &impl SquareFreeSign, lo: Rat, hi: Rat, tol: Tolerance) -> f64 {
     let s_hi = seq.sign_of_square_free_at(&hi);
     if s_hi == 0 {
         return rat_to_f64(&hi);

@@ -20,7 +20,8 @@
 //! Smoke run (part of `cargo test`): [`SMOKE_CASES`] cases of degree at most
 //! [`SMOKE_MAX_DEGREE`], deterministic. Longer run, degrees up to 40:
 //! `FUZZ_CASES=100000 FUZZ_SEED=7 FUZZ_MAX_DEGREE=40 cargo test --release -p poly --test
-//! fuzz_coeffs -- --nocapture`.
+//! fuzz_coeffs -- --nocapture`. With `FUZZ_TRACE=1` each case is printed before it runs, so
+//! a hang shows its input.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::{Duration, Instant};
@@ -219,10 +220,16 @@ fn fuzz(seed: u64, cases: usize, max_degree: usize) -> Tally {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut tally = Tally::default();
     let mut failures = Vec::new();
+    let trace = std::env::var_os("FUZZ_TRACE").is_some();
     for case in 0..cases {
         let coeffs = coefficients(&mut rng, max_degree);
         let (lo, hi) = range(&mut rng);
         let x_tol = tolerance(&mut rng);
+        if trace {
+            eprintln!(
+                "fuzz_coeffs seed {seed}: case {case}: {coeffs:?} on ({lo:e}, {hi:e}] x_tol {x_tol:e}"
+            );
+        }
         let start = Instant::now();
         let result = catch_unwind(AssertUnwindSafe(|| {
             run_case(&coeffs, lo, hi, x_tol, &mut tally)
