@@ -319,7 +319,12 @@ impl Poly<f64> {
             IsolationMethod::Exact => Ok(exact_smallest(self, lo, hi, opts.tolerance(), stats)),
             IsolationMethod::Sturm => sturm_smallest(self, lo, hi, opts, stats),
             IsolationMethod::StamSturm => match StamSturm::new(self) {
-                Some(s) => s.smallest_root(lo, hi, opts.x_tol),
+                Some(s) => match s.smallest_root(lo, hi, opts.x_tol)? {
+                    None if count_contradicted(self.coeffs(), lo, hi) => {
+                        Err(RootError::Unresolved { lo, hi })
+                    }
+                    found => Ok(found),
+                },
                 None => Ok(None),
             },
         }
@@ -552,21 +557,23 @@ impl Poly<f64> {
             IsolationMethod::Sturm => {
                 let seq = self.sturm()?;
                 Isolation::Heuristic(bisect_isolate(
-                    |x, y| seq.count_roots(x, y),
+                    self.coeffs(),
+                    |x, y| seq.count_roots_checked(x, y),
                     lo,
                     hi,
                     false,
                     stats,
-                ))
+                )?)
             }
             IsolationMethod::StamSturm => match StamSturm::new(self) {
                 Some(s) => Isolation::Heuristic(bisect_isolate(
-                    |x, y| s.count_roots(x, y),
+                    self.coeffs(),
+                    |x, y| Some(s.count_roots(x, y)),
                     lo,
                     hi,
                     false,
                     stats,
-                )),
+                )?),
                 None => Isolation::Heuristic(Vec::new()),
             },
         })
@@ -782,18 +789,28 @@ fn refine_rat_to_f64(seq: &impl SquareFreeSign, lo: Rat, hi: Rat, tol: Tolerance
 
 /// Stam's isolation algorithm (seed §3.5.2) with a floating-point count: keep halving
 /// `(a, b]` until each piece holds one root by the count.
+///
+/// # Errors
+/// [`RootError::Unresolved`] for a piece whose count is unknown (`count` gave `None`) or
+/// provably wrong: zero while the stored polynomial `c` has certified opposite signs at the
+/// piece's ends ([`count_contradicted`]). Issue 11: a heuristic never answers "no root"
+/// against that evidence.
 fn bisect_isolate(
-    count: impl Fn(f64, f64) -> usize,
+    c: &[f64],
+    count: impl Fn(f64, f64) -> Option<usize>,
     lo: f64,
     hi: f64,
     first_only: bool,
     stats: &mut RootStats,
-) -> Vec<RootInterval<f64>> {
+) -> Result<Vec<RootInterval<f64>>, RootError> {
     let mut out = Vec::new();
     let mut stack = vec![(lo, hi, 0u32)];
     while let Some((a, b, depth)) = stack.pop() {
-        let n = count(a, b);
+        let n = count(a, b).ok_or(RootError::Unresolved { lo: a, hi: b })?;
         if n == 0 {
+            if count_contradicted(c, a, b) {
+                return Err(RootError::Unresolved { lo: a, hi: b });
+            }
             continue;
         }
         let m = 0.5 * a + 0.5 * b;
@@ -808,7 +825,23 @@ fn bisect_isolate(
         stack.push((m, b, depth + 1));
         stack.push((a, m, depth + 1));
     }
-    out
+    Ok(out)
+}
+
+/// True when the stored polynomial `c` has certified, non-zero, opposite signs at `a` and
+/// `b` (signs at an infinite end from the leading term): then `(a, b)` holds a root of odd
+/// multiplicity, whatever a floating-point count says. Costs two bounded evaluations.
+fn count_contradicted(c: &[f64], a: f64, b: f64) -> bool {
+    let sign = |x: f64| {
+        if x.is_finite() {
+            certified_sign(c, x)
+        } else {
+            let n = c.len() - 1;
+            let lead = if c[n] > 0.0 { 1 } else { -1 };
+            if x < 0.0 && n % 2 == 1 { -lead } else { lead }
+        }
+    };
+    c.len() > 1 && !a.is_nan() && !b.is_nan() && sign(a) * sign(b) < 0
 }
 
 /// Floating-point Sturm query (heuristic): leftmost interval by counts, then refinement.
@@ -822,7 +855,14 @@ fn sturm_smallest(
     let Ok(seq) = p.sturm() else {
         return Ok(None);
     };
-    let ivs = bisect_isolate(|x, y| seq.count_roots(x, y), lo, hi, true, stats);
+    let ivs = bisect_isolate(
+        p.coeffs(),
+        |x, y| seq.count_roots_checked(x, y),
+        lo,
+        hi,
+        true,
+        stats,
+    )?;
     ivs.first()
         .map(|iv| refine_heuristic(p, iv, opts, stats))
         .transpose()

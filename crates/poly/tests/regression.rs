@@ -538,3 +538,31 @@ fn overflowing_end_value_was_taken_for_a_root() {
         }
     }
 }
+
+/// Issue 11, "heuristic methods never lie silently", found by the coefficient fuzzer (seed
+/// 13, smoke case 59): `x·(1.149e183·x² − 0.15·x − 2.2e-308)` has the roots −1.48e-307, 0 and
+/// 1.31e-184 in `(−1e300, 1e300]`, and the `Sturm` method answered "no root" for all of them
+/// (its `f64` sequence of coefficients this wide counts nothing). Its count is now checked
+/// against the stored polynomial's certified end signs and its own evaluation bounds: it
+/// reports `Unresolved` instead of an empty answer.
+#[test]
+fn sturm_heuristic_answered_no_root_against_certified_opposite_signs() {
+    let p = Poly::new(vec![
+        0.0,
+        -2.2250738585072014e-308,
+        -0.14999100416109323,
+        1.148912830499637e183,
+    ]);
+    let (lo, hi) = (-1e300, 1e300);
+    let want = oracle(&p, lo, hi);
+    assert_eq!(want.len(), 3, "the oracle: {want:?}");
+    let o = with(IsolationMethod::Sturm, 0.0);
+    match p.real_roots_with(lo, hi, &o, &mut RootStats::default()) {
+        Ok(got) => assert_roots_match(&got, &want, 0.0, "Sturm all"),
+        Err(e) => assert!(matches!(e, RootError::Unresolved { .. }), "{e}"),
+    }
+    match p.try_smallest_root(lo, hi, &o, &mut RootStats::default()) {
+        Ok(got) => assert_eq!(got, Some(want[0]), "Sturm smallest"),
+        Err(e) => assert!(matches!(e, RootError::Unresolved { .. }), "{e}"),
+    }
+}
