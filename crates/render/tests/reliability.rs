@@ -380,8 +380,18 @@ fn files_beyond_the_read_limits_are_refused_naming_the_limit() {
         std::fs::File::create(&path).unwrap().set_len(len).unwrap();
         path
     };
+    // The message and its causes, as the CLI prints them (`{:#}`).
+    let chain = |e: &dyn std::error::Error| {
+        let mut text = e.to_string();
+        let mut cause = e.source();
+        while let Some(c) = cause {
+            text = format!("{text}: {c}");
+            cause = c.source();
+        }
+        text
+    };
     let big = sparse("big.scene", MAX_SCENE_BYTES + 1);
-    let e = render::scene::load(&big).unwrap_err().to_string();
+    let e = chain(&render::scene::load(&big).unwrap_err());
     assert!(
         e.contains(&format!("longer than the limit of {MAX_SCENE_BYTES} bytes")),
         "{e}"
@@ -402,6 +412,6 @@ fn files_beyond_the_read_limits_are_refused_naming_the_limit() {
     );
     // Within the limit the size check passes: 64 NUL bytes fail as text, not by size.
     let at = sparse("small.scene", 64);
-    let e = render::scene::load(&at).unwrap_err().to_string();
+    let e = chain(&render::scene::load(&at).unwrap_err());
     assert!(!e.contains("longer than the limit"), "{e}");
 }
