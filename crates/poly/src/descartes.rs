@@ -160,7 +160,8 @@ impl<'a> Descartes<'a> {
             }
             stack.push(Item::Open(a, m, m_root));
         }
-        if hi_is_root && !(first_only && !out.is_empty()) {
+        // With `first_only`, every earlier find has returned: `out` is empty here.
+        if hi_is_root {
             out.push(RootInterval { lo: hi, hi });
         }
         Some(out)
