@@ -832,16 +832,19 @@ fn bisect_isolate(
 /// `b` (signs at an infinite end from the leading term): then `(a, b)` holds a root of odd
 /// multiplicity, whatever a floating-point count says. Costs two bounded evaluations.
 fn count_contradicted(c: &[f64], a: f64, b: f64) -> bool {
+    // The degree and leading coefficient past any stored zeros (`Poly::new_raw`).
+    let Some(n) = c.iter().rposition(|&x| x != 0.0) else {
+        return false;
+    };
     let sign = |x: f64| {
         if x.is_finite() {
             certified_sign(c, x)
         } else {
-            let n = c.len() - 1;
             let lead = if c[n] > 0.0 { 1 } else { -1 };
             if x < 0.0 && n % 2 == 1 { -lead } else { lead }
         }
     };
-    c.len() > 1 && !a.is_nan() && !b.is_nan() && sign(a) * sign(b) < 0
+    n > 0 && !a.is_nan() && !b.is_nan() && sign(a) * sign(b) < 0
 }
 
 /// Floating-point Sturm query (heuristic): leftmost interval by counts, then refinement.
