@@ -25,11 +25,10 @@ use smallvec::SmallVec;
 
 use crate::bernstein::{self, Bracket, Brackets, Stuck};
 use crate::eval_bound::{certified_sign, certified_sign_pair};
+use crate::exact_oracle::ExactOracle;
 use crate::multiprec::{Outcome, PieceIsolator, Tier, point_sign};
 use crate::root_interval::RootInterval;
-use crate::scalar::{Rat, rat_from_f64};
 use crate::stats::RootStats;
-use crate::sturm::SturmSequence;
 use crate::univariate::Poly;
 
 /// Most Bernstein runs in one query (the first included) before the remaining pieces go
@@ -73,8 +72,8 @@ pub(crate) struct CertifiedSearch<'p> {
     went_adaptive: bool,
     /// Subdivisions so far, over all runs.
     splits: u32,
-    /// The exact Sturm sequence of the stored polynomial, built on first need.
-    exact: Option<SturmSequence<Rat>>,
+    /// The exact oracle of the stored polynomial, built on first need.
+    exact: Option<ExactOracle>,
     /// The roots found, sorted.
     pub(crate) found: SmallVec<[Found; 2]>,
 }
@@ -115,8 +114,8 @@ impl<'p> CertifiedSearch<'p> {
         search
     }
 
-    /// The exact sequence, when some piece needed it.
-    pub(crate) fn exact_sequence(&self) -> Option<&SturmSequence<Rat>> {
+    /// The exact oracle, when some piece needed it.
+    pub(crate) fn exact_sequence(&self) -> Option<&ExactOracle> {
         self.exact.as_ref()
     }
 
@@ -251,17 +250,15 @@ impl<'p> CertifiedSearch<'p> {
         false
     }
 
-    /// Exact Sturm isolation of `(lo, hi]` (finite `f64` ends); true when the search is over.
+    /// Exact isolation of `(lo, hi]` (finite `f64` ends, [`ExactOracle`]); true when the
+    /// search is over.
     fn exact(&mut self, lo: f64, hi: f64, stats: &mut RootStats) -> bool {
         let p = self.p;
-        let seq = self.exact.get_or_insert_with(|| {
+        let oracle = self.exact.get_or_insert_with(|| {
             stats.exact_fallbacks += 1;
-            p.to_rat()
-                .expect("finite coefficients were checked")
-                .sturm()
-                .expect("non-zero polynomial was checked")
+            ExactOracle::new(&p.to_rat().expect("finite coefficients were checked"))
         });
-        let ivs = exact_isolate(seq, lo, hi, self.first_only, stats);
+        let ivs = oracle.isolate(lo, hi, self.first_only, stats);
         let any = !ivs.is_empty();
         self.found.extend(ivs.into_iter().map(Found::Exact));
         self.first_only && any
@@ -297,54 +294,11 @@ fn split_point(c: &[f64], lo: f64, hi: f64) -> Option<(f64, i8)> {
     })
 }
 
-/// Exact Sturm isolation of the stored polynomial on `(lo, hi]` (finite ends), bisecting at
-/// `f64` points so that every interval end is an `f64` (seed §3.5.2 with exact counts).
-/// Roots closer than one `f64` spacing share an interval, listed once per root (documented
-/// on [`Poly::isolate_roots`]).
-pub(crate) fn exact_isolate(
-    seq: &SturmSequence<Rat>,
-    lo: f64,
-    hi: f64,
-    first_only: bool,
-    stats: &mut RootStats,
-) -> Vec<RootInterval<f64>> {
-    let count_at = |x: f64| seq.sign_changes_at(&rat_from_f64(x).expect("finite"));
-    let mut out = Vec::new();
-    let mut stack = vec![(lo, hi, count_at(lo), count_at(hi))];
-    while let Some((a, b, va, vb)) = stack.pop() {
-        let n = va.saturating_sub(vb);
-        if n == 0 {
-            continue;
-        }
-        let m = 0.5 * a + 0.5 * b;
-        let splittable = m > a && m < b;
-        if n == 1 || !splittable {
-            let at_b = seq.sign_of_square_free_at(&rat_from_f64(b).expect("finite")) == 0;
-            for _ in 0..n {
-                out.push(if at_b && n == 1 {
-                    RootInterval { lo: b, hi: b }
-                } else {
-                    RootInterval { lo: a, hi: b }
-                });
-            }
-            if first_only {
-                break;
-            }
-            continue;
-        }
-        stats.subdivisions += 1;
-        let vm = count_at(m);
-        stack.push((m, b, vm, vb));
-        stack.push((a, m, va, vm));
-    }
-    out
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::root_options::RootOptions;
-    use crate::scalar::rat_to_f64;
+    use crate::scalar::{rat_from_f64, rat_to_f64};
     use crate::testutil::{chebyshev, planted_f64};
 
     /// The distinct roots of the stored polynomial in `(lo, hi]` by exact Sturm isolation,

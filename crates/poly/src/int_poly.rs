@@ -77,6 +77,37 @@ impl IntPoly {
         self.c.len().saturating_sub(1)
     }
 
+    /// The coefficients, lowest degree first, no trailing zero.
+    pub(crate) fn coeffs(&self) -> &[BigInt] {
+        &self.c
+    }
+
+    /// True when `gcd(p, p')` is certainly constant, i.e. `p` has no repeated complex root:
+    /// for one of [`SQUARE_FREE_PRIMES`] that does not divide `lc(p)`, the images of `p` and
+    /// `p'` modulo that prime are coprime. Exact: a common factor `h` of `p` and `p'` over
+    /// the integers (primitive, by Gauss's lemma) has `lc(h) | lc(p)`, so its image keeps its
+    /// degree and divides both images. False means "not certified" (almost always a repeated
+    /// factor), never "not square-free" for sure. Constants and the zero polynomial give
+    /// false.
+    pub(crate) fn is_certainly_square_free(&self) -> bool {
+        if self.degree() == 0 {
+            return false;
+        }
+        SQUARE_FREE_PRIMES.iter().any(|&q| {
+            let image: Vec<u64> = self.c.iter().map(|x| residue(x, q)).collect();
+            if image.last() == Some(&0) {
+                return false;
+            }
+            let derivative: Vec<u64> = image
+                .iter()
+                .enumerate()
+                .skip(1)
+                .map(|(i, &x)| x * (i as u64 % q) % q)
+                .collect();
+            gcd_degree_mod(image, derivative, q) == Some(0)
+        })
+    }
+
     pub(crate) fn to_qpoly(&self) -> QPoly {
         QPoly::new_raw(self.c.iter().cloned().map(Rat::from_integer).collect())
     }
@@ -222,6 +253,58 @@ impl IntPoly {
     }
 }
 
+/// Primes below `2^31` (products of two residues fit a `u64`) for the modular square-free
+/// test; three, so that a prime dividing the leading coefficient or a discriminant by chance
+/// leaves two more.
+const SQUARE_FREE_PRIMES: [u64; 3] = [2_147_483_647, 2_147_483_629, 2_147_483_587];
+
+/// `x mod q` in `[0, q)`.
+fn residue(x: &BigInt, q: u64) -> u64 {
+    use num_traits::ToPrimitive;
+    x.mod_floor(&BigInt::from(q))
+        .to_u64()
+        .expect("a residue is below q")
+}
+
+/// `b^e mod q`.
+fn pow_mod(mut b: u64, mut e: u64, q: u64) -> u64 {
+    let mut r = 1;
+    while e > 0 {
+        if e & 1 == 1 {
+            r = r * b % q;
+        }
+        b = b * b % q;
+        e >>= 1;
+    }
+    r
+}
+
+/// The degree of `gcd(a, b)` over the integers modulo the prime `q` (coefficients lowest
+/// first, reduced), by Euclid's algorithm; `None` when both are zero.
+fn gcd_degree_mod(mut a: Vec<u64>, mut b: Vec<u64>, q: u64) -> Option<usize> {
+    let trim = |v: &mut Vec<u64>| {
+        while v.last() == Some(&0) {
+            v.pop();
+        }
+    };
+    trim(&mut a);
+    trim(&mut b);
+    // Each pass lowers the degree of b: at most deg(a) + deg(b) + 1 passes.
+    while !b.is_empty() {
+        let inv = pow_mod(*b.last().expect("non-empty"), q - 2, q);
+        while a.len() >= b.len() {
+            let f = a.last().expect("non-empty") * inv % q;
+            let off = a.len() - b.len();
+            for (j, &bj) in b.iter().enumerate() {
+                a[off + j] = (a[off + j] + q - f * bj % q) % q;
+            }
+            trim(&mut a);
+        }
+        std::mem::swap(&mut a, &mut b);
+    }
+    a.len().checked_sub(1)
+}
+
 fn sign_of(x: &BigInt) -> i8 {
     match x.sign() {
         Sign::Minus => -1,
@@ -307,6 +390,31 @@ mod tests {
                 .fold(BigInt::zero(), |g, c| g.gcd(c.numer()));
             assert!(content.is_one(), "primitive: {got:?}");
         }
+    }
+
+    #[test]
+    fn square_free_test_certifies_simple_roots_and_refuses_repeated_ones() {
+        let cubic = ip(&[-6, 11, -6, 1]); // (x−1)(x−2)(x−3)
+        assert!(cubic.is_certainly_square_free(), "distinct roots");
+        let double = ip(&[4, -12, 13, -6, 1]); // (x−1)²(x−2)²
+        assert!(!double.is_certainly_square_free(), "repeated real roots");
+        let complex = ip(&[1, 0, 2, 0, 1]); // (x² + 1)²
+        assert!(
+            !complex.is_certainly_square_free(),
+            "repeated complex roots"
+        );
+        // 2147483647·x² − 1: the leading coefficient vanishes modulo the first prime, the
+        // others certify it.
+        let lead = IntPoly::trimmed(vec![
+            BigInt::from(-1),
+            BigInt::zero(),
+            BigInt::from(2_147_483_647),
+        ]);
+        assert!(lead.is_certainly_square_free(), "another prime decides");
+        assert!(
+            !ip(&[5]).is_certainly_square_free(),
+            "constants are not certified"
+        );
     }
 
     #[test]

@@ -15,9 +15,10 @@
 use std::cell::Cell;
 
 use crate::bernstein::Bracket;
-use crate::certified::{CertifiedSearch, Found, exact_isolate};
+use crate::certified::{CertifiedSearch, Found};
 use crate::closed_form::{linear_smallest, quadratic_smallest};
 use crate::eval_bound::{certified_sign, certified_sign_pair};
+use crate::exact_oracle::{ExactOracle, SquareFreeSign};
 use crate::multiprec::refine_wide;
 use crate::query::with_scratch_poly;
 use crate::refine::{Refined, bisect_rational_to_f64, refine_bracket, refine_exact_f64};
@@ -334,7 +335,12 @@ impl Poly<f64> {
             IsolationMethod::Exact => Ok(exact_smallest(self, lo, hi, opts.tolerance(), stats)),
             IsolationMethod::Sturm => sturm_smallest(self, lo, hi, opts, stats),
             IsolationMethod::StamSturm => match StamSturm::new(self) {
-                Some(s) => s.smallest_root(lo, hi, opts.x_tol),
+                Some(s) => match s.smallest_root(lo, hi, opts.x_tol)? {
+                    None if count_contradicted(self.coeffs(), lo, hi) => {
+                        Err(RootError::Unresolved { lo, hi })
+                    }
+                    found => Ok(found),
+                },
                 None => Ok(None),
             },
         }
@@ -567,21 +573,23 @@ impl Poly<f64> {
             IsolationMethod::Sturm => {
                 let seq = self.sturm()?;
                 Isolation::Heuristic(bisect_isolate(
-                    |x, y| seq.count_roots(x, y),
+                    self.coeffs(),
+                    |x, y| seq.count_roots_checked(x, y),
                     lo,
                     hi,
                     false,
                     stats,
-                ))
+                )?)
             }
             IsolationMethod::StamSturm => match StamSturm::new(self) {
                 Some(s) => Isolation::Heuristic(bisect_isolate(
-                    |x, y| s.count_roots(x, y),
+                    self.coeffs(),
+                    |x, y| Some(s.count_roots(x, y)),
                     lo,
                     hi,
                     false,
                     stats,
-                )),
+                )?),
                 None => Isolation::Heuristic(Vec::new()),
             },
         })
@@ -592,8 +600,8 @@ impl Poly<f64> {
 enum Isolation<'p> {
     /// The default certified search: `f64` brackets, and exact intervals where it needed them.
     Certified(CertifiedSearch<'p>),
-    /// Exact isolation: the exact Sturm sequence and intervals with `f64` ends.
-    Exact(SturmSequence<Rat>, Vec<RootInterval<f64>>),
+    /// Exact isolation: the exact oracle (for refinement) and intervals with `f64` ends.
+    Exact(ExactOracle, Vec<RootInterval<f64>>),
     /// Floating-point Sturm counts: intervals `(lo, hi]` by the counts.
     Heuristic(Vec<RootInterval<f64>>),
 }
@@ -738,8 +746,9 @@ fn exact_smallest(
     }
 }
 
-/// Exact Sturm isolation of the stored polynomial on `(lo, hi]`, bisecting at `f64` points
-/// so that every interval end is an `f64` (seed §3.5.2 with exact counts).
+/// Exact isolation of the stored polynomial on `(lo, hi]` with `f64` interval ends: Descartes
+/// bisection when it is certified square-free, else Sturm counts (seed §3.5.2), both exact
+/// ([`ExactOracle`]).
 fn exact_isolation(
     p: &Poly<f64>,
     lo: f64,
@@ -748,7 +757,7 @@ fn exact_isolation(
     stats: &mut RootStats,
 ) -> Isolation<'static> {
     let q = p.to_rat().expect("finite coefficients were checked");
-    let seq = q.sturm().expect("non-zero polynomial was checked");
+    let oracle = ExactOracle::new(&q);
     // Infinite ends: the exact Cauchy bound holds every root strictly inside (−B, B).
     let bound = q
         .cauchy_bound()
@@ -764,8 +773,8 @@ fn exact_isolation(
     } else {
         bound.min(f64::MAX)
     };
-    let out = exact_isolate(&seq, lo, hi, first_only, stats);
-    Isolation::Exact(seq, out)
+    let out = oracle.isolate(lo, hi, first_only, stats);
+    Isolation::Exact(oracle, out)
 }
 
 /// Refines an exact-isolation interval with exact signs and rounds to `f64`.
@@ -773,7 +782,7 @@ fn exact_isolation(
 /// # Accuracy
 /// Within `max(tol.abs, tol.rel·|root|)` of the root, or one `f64` spacing when that is
 /// smaller.
-fn refine_exact_interval(seq: &SturmSequence<Rat>, iv: &RootInterval<f64>, tol: Tolerance) -> f64 {
+fn refine_exact_interval(seq: &impl SquareFreeSign, iv: &RootInterval<f64>, tol: Tolerance) -> f64 {
     if iv.is_point() {
         return iv.lo;
     }
@@ -784,7 +793,7 @@ fn refine_exact_interval(seq: &SturmSequence<Rat>, iv: &RootInterval<f64>, tol: 
 
 /// Bisection with exact signs of the square-free part, from an open interval `(lo, hi)` with
 /// one root (signs only at `hi` and midpoints), to `f64` accuracy `tol`.
-fn refine_rat_to_f64(seq: &SturmSequence<Rat>, lo: Rat, hi: Rat, tol: Tolerance) -> f64 {
+fn refine_rat_to_f64(seq: &impl SquareFreeSign, lo: Rat, hi: Rat, tol: Tolerance) -> f64 {
     let s_hi = seq.sign_of_square_free_at(&hi);
     if s_hi == 0 {
         return rat_to_f64(&hi);
@@ -794,18 +803,28 @@ fn refine_rat_to_f64(seq: &SturmSequence<Rat>, lo: Rat, hi: Rat, tol: Tolerance)
 
 /// Stam's isolation algorithm (seed §3.5.2) with a floating-point count: keep halving
 /// `(a, b]` until each piece holds one root by the count.
+///
+/// # Errors
+/// [`RootError::Unresolved`] for a piece whose count is unknown (`count` gave `None`) or
+/// provably wrong: zero while the stored polynomial `c` has certified opposite signs at the
+/// piece's ends ([`count_contradicted`]). Issue 11: a heuristic never answers "no root"
+/// against that evidence.
 fn bisect_isolate(
-    count: impl Fn(f64, f64) -> usize,
+    c: &[f64],
+    count: impl Fn(f64, f64) -> Option<usize>,
     lo: f64,
     hi: f64,
     first_only: bool,
     stats: &mut RootStats,
-) -> Vec<RootInterval<f64>> {
+) -> Result<Vec<RootInterval<f64>>, RootError> {
     let mut out = Vec::new();
     let mut stack = vec![(lo, hi, 0u32)];
     while let Some((a, b, depth)) = stack.pop() {
-        let n = count(a, b);
+        let n = count(a, b).ok_or(RootError::Unresolved { lo: a, hi: b })?;
         if n == 0 {
+            if count_contradicted(c, a, b) {
+                return Err(RootError::Unresolved { lo: a, hi: b });
+            }
             continue;
         }
         let m = 0.5 * a + 0.5 * b;
@@ -820,7 +839,26 @@ fn bisect_isolate(
         stack.push((m, b, depth + 1));
         stack.push((a, m, depth + 1));
     }
-    out
+    Ok(out)
+}
+
+/// True when the stored polynomial `c` has certified, non-zero, opposite signs at `a` and
+/// `b` (signs at an infinite end from the leading term): then `(a, b)` holds a root of odd
+/// multiplicity, whatever a floating-point count says. Costs two bounded evaluations.
+fn count_contradicted(c: &[f64], a: f64, b: f64) -> bool {
+    // The degree and leading coefficient past any stored zeros (`Poly::new_raw`).
+    let Some(n) = c.iter().rposition(|&x| x != 0.0) else {
+        return false;
+    };
+    let sign = |x: f64| {
+        if x.is_finite() {
+            certified_sign(c, x)
+        } else {
+            let lead = if c[n] > 0.0 { 1 } else { -1 };
+            if x < 0.0 && n % 2 == 1 { -lead } else { lead }
+        }
+    };
+    n > 0 && !a.is_nan() && !b.is_nan() && sign(a) * sign(b) < 0
 }
 
 /// Floating-point Sturm query (heuristic): leftmost interval by counts, then refinement.
@@ -834,7 +872,14 @@ fn sturm_smallest(
     let Ok(seq) = p.sturm() else {
         return Ok(None);
     };
-    let ivs = bisect_isolate(|x, y| seq.count_roots(x, y), lo, hi, true, stats);
+    let ivs = bisect_isolate(
+        p.coeffs(),
+        |x, y| seq.count_roots_checked(x, y),
+        lo,
+        hi,
+        true,
+        stats,
+    )?;
     ivs.first()
         .map(|iv| refine_heuristic(p, iv, opts, stats))
         .transpose()

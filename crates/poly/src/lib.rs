@@ -7,7 +7,8 @@
 //! # Layers
 //! `scalar` (the [`Scalar`] trait over `f64` and [`Rat`]) → `univariate` ([`Poly`], the unit
 //! roundoff, Horner's rule, root bounds) → `eval_bound` (evaluation with rigorous error
-//! bounds) → `sturm`, `stam`, `bernstein` (root counting and isolation) → `certified`,
+//! bounds) → `sturm`, `stam`, `bernstein`, `descartes` (root counting and isolation) →
+//! `exact_oracle` (exact isolation: Descartes or Sturm) → `certified`,
 //! `closed_form`, `refine` → `isolate` (the queries on [`Poly`]) → `query` ([`PolyRef`] and
 //! [`RootQuery`]: the same queries on borrowed coefficients). `bivariate` builds on
 //! `univariate` only.
@@ -36,7 +37,9 @@
 //! and `MAX_SPLITS = 4000` subdivisions per query, `MAX_DEPTH = 52` (a relative width of
 //! `2^-52` is one rounding step), `MAX_ITERATIONS = 2200` refinement steps (≈ 2100 halvings
 //! take the widest `f64` interval to adjacent numbers), `MAX_HEURISTIC_BISECTIONS = 200` and
-//! Stam's `MAX_ISOLATION_STEPS = 200`, `MAX_REFINE_STEPS = 2200`.
+//! Stam's `MAX_ISOLATION_STEPS = 200`, `MAX_REFINE_STEPS = 2200`; exact Descartes isolation
+//! splits at `f64` points only (finitely many) and spends at most `MAX_SUBULP_TESTS = 400`
+//! tests inside one `f64` spacing before the exact Sturm count takes over.
 //!
 //! # Examples
 //! ```
@@ -57,9 +60,11 @@ mod bivariate;
 mod certified;
 mod closed_form;
 mod dd_bernstein;
+mod descartes;
 mod double_double;
 mod eval_bound;
 mod exact_bisection;
+mod exact_oracle;
 mod int_poly;
 mod isolate;
 mod multiprec;

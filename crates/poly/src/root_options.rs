@@ -24,11 +24,28 @@ pub enum IsolationMethod {
     /// maximum coefficient, negligible leading terms dropped), then Stam's bisection isolation
     /// (seed §3.5.2). A heuristic: counts can be wrong when the remainder sequence loses
     /// accuracy (clustered roots, high degree).
+    ///
+    /// What it promises (issue 11, "heuristic methods never lie silently"): every root it
+    /// returns is bracketed by certified opposite signs of the stored polynomial (or is an
+    /// end where the polynomial is within rounding of zero) and refined as the certified
+    /// path refines; a count it can tell is wrong or unknown — a member's sign within its own
+    /// rounding bound that decides the count, or "no root" between certified opposite signs
+    /// — is [`RootError::Unresolved`](crate::RootError::Unresolved), never an answer. What it
+    /// does not promise: that no root is missed. A wrong count of an even number of roots
+    /// between ends of equal sign, from rounding in the remainder sequence itself, is
+    /// invisible to these checks (the fuzzer's case: roots −1 and 1.1e-44 of a degree-33
+    /// polynomial with coefficients up to `f64::MAX`, both missed).
     Sturm,
     /// Stam's 1988 procedure as written in `ray2.c` (Annexe B): his cross-multiplied Sturm
     /// recurrence normalised by the absolute value of each remainder's leading coefficient, his
     /// count-driven bisection, and his bisection refinement. Kept for comparison; the thesis
     /// reports it unstable above degree 8 (seed §4, p. 30).
+    ///
+    /// Its promises are those of [`IsolationMethod::Sturm`] except the evaluation-bound
+    /// check (Stam's recurrence is kept as written): a root returned is confirmed by a sign
+    /// change, "no root" between certified opposite end signs is reported as
+    /// [`RootError::Unresolved`](crate::RootError::Unresolved), and an even number of
+    /// roots between ends of equal sign can be missed.
     StamSturm,
     /// Exact rational Sturm sequence of the stored polynomial (converted exactly with
     /// [`Poly::to_rat`](crate::Poly::to_rat)), bisection on rationals. Certified and slow;

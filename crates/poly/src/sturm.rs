@@ -18,6 +18,7 @@
 use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
 
+use crate::eval_bound::horner_bounded;
 use crate::int_poly::IntPoly;
 use crate::root_error::RootError;
 use crate::scalar::{Rat, Scalar};
@@ -255,6 +256,63 @@ impl SturmSequence<f64> {
         self.sign_changes_at(a)
             .saturating_sub(self.sign_changes_at(b))
     }
+
+    /// [`count_roots`](Self::count_roots), or `None` when the evaluation itself cannot be
+    /// trusted: at an end, a member `V_k` (`k ≥ 1`) has a value within its own rounding
+    /// bound ([`horner_bounded`]) and changing its sign could change `σ` — it is last, or its
+    /// nearest certain neighbours do not have opposite signs, or a neighbour is uncertain
+    /// too. (A lone uncertain member between certain opposite neighbours cannot change `σ`:
+    /// that is eq. 3.21's own argument for zeros inside the sequence.) `V₀` is exempt: near
+    /// a root of `P` the count is only ambiguous about which side of the end the root lies.
+    ///
+    /// # Accuracy
+    /// Still a heuristic: the members' coefficients carry the remainder sequence's rounding,
+    /// which no bound here covers. This catches rounding in the evaluation only.
+    pub(crate) fn count_roots_checked(&self, a: f64, b: f64) -> Option<usize> {
+        if a.is_nan() || b.is_nan() || a >= b {
+            return Some(0);
+        }
+        let (va, vb) = (self.sign_changes_checked(a)?, self.sign_changes_checked(b)?);
+        Some(va.saturating_sub(vb))
+    }
+
+    /// `σ(x)`, or `None` when an uncertain member sign could change it (see
+    /// [`count_roots_checked`](Self::count_roots_checked)).
+    fn sign_changes_checked(&self, x: f64) -> Option<usize> {
+        if x.is_infinite() {
+            return Some(self.sign_changes_at(x));
+        }
+        // Signs with 2 for "uncertain"; V₀ keeps its computed sign.
+        let signs: Vec<i8> = self
+            .polys
+            .iter()
+            .enumerate()
+            .map(|(k, v)| {
+                let (value, err) = horner_bounded(v.coeffs(), x);
+                if k > 0 && value.abs() <= err && err > 0.0 {
+                    2
+                } else if value > 0.0 {
+                    1
+                } else if value < 0.0 {
+                    -1
+                } else {
+                    0
+                }
+            })
+            .collect();
+        for (k, &s) in signs.iter().enumerate() {
+            if s != 2 {
+                continue;
+            }
+            let before = signs[..k].iter().rev().find(|&&t| t != 0);
+            let after = signs[k + 1..].iter().find(|&&t| t != 0);
+            match (before, after) {
+                (Some(&l), Some(&r)) if l != 2 && r != 2 && l == -r => {}
+                _ => return None,
+            }
+        }
+        Some(count_changes(signs.into_iter().filter(|&s| s != 2)))
+    }
 }
 
 /// Divides by the largest coefficient magnitude (a positive number).
@@ -427,6 +485,39 @@ mod tests {
             Poly::new(vec![f64::NAN, 1.0]).sturm(),
             Err(RootError::NonFiniteCoefficient { index: 0 }),
             "NaN coefficient"
+        );
+    }
+
+    /// Issue 11, "heuristic methods never lie silently": the checked count refuses a member
+    /// sign within its rounding bound when the sign decides `σ`. Hand-made sequences: `V₁ =
+    /// x − 1` is 0 at 1 with a non-zero bound; with `V₀ = 1 + x` and `V₂ = 1` (both positive
+    /// there) its sign decides between 0 and 2 changes, with `V₂ = −1` it cannot matter.
+    #[test]
+    fn checked_count_refuses_a_sign_below_its_rounding_bound_that_decides() {
+        let seq = |last: f64| SturmSequence {
+            polys: vec![
+                Poly::new(vec![1.0, 1.0]),
+                Poly::new(vec![-1.0, 1.0]),
+                Poly::new(vec![last]),
+            ],
+            multiple_roots: false,
+        };
+        let same = seq(1.0);
+        assert_eq!(
+            same.count_roots_checked(0.0, 1.0),
+            None,
+            "V₁(1) decides σ(1)"
+        );
+        assert_eq!(
+            same.count_roots_checked(-0.5, 0.5),
+            Some(0),
+            "certain at ±0.5"
+        );
+        let opposite = seq(-1.0);
+        assert_eq!(
+            opposite.count_roots_checked(0.0, 1.0),
+            Some(opposite.count_roots(0.0, 1.0)),
+            "a lone uncertain sign between + and − cannot change σ"
         );
     }
 

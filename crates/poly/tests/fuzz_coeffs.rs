@@ -20,7 +20,8 @@
 //! Smoke run (part of `cargo test`): [`SMOKE_CASES`] cases of degree at most
 //! [`SMOKE_MAX_DEGREE`], deterministic. Longer run, degrees up to 40:
 //! `FUZZ_CASES=100000 FUZZ_SEED=7 FUZZ_MAX_DEGREE=40 cargo test --release -p poly --test
-//! fuzz_coeffs -- --nocapture`.
+//! fuzz_coeffs -- --nocapture`. With `FUZZ_TRACE=1` each case is printed before it runs, so
+//! a hang shows its input.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::{Duration, Instant};
@@ -35,9 +36,10 @@ const SMOKE_CASES: usize = 300;
 /// The highest degree the smoke run draws (see [`fuzz_coefficients_smoke`]).
 const SMOKE_MAX_DEGREE: usize = ORACLE_DEGREE;
 
-/// The largest degree compared with the exact oracle: the rational Sturm sequence of a
-/// degree-19 polynomial with coefficients from 1e-180 to 1e154 took over a minute (issue 13,
-/// item 17), and the oracle has no budget of its own.
+/// The largest degree compared with the exact oracle (`QPoly::real_roots`, exact Sturm —
+/// independent of the `Exact` method's Descartes isolation): the rational Sturm sequence of
+/// a degree-19 polynomial with coefficients from 1e-180 to 1e154 took over a minute (issue
+/// 13, item 17), and the oracle has no budget of its own.
 const ORACLE_DEGREE: usize = 8;
 
 /// The most time one case (every query under every method) may take: item 17 asks for an
@@ -58,6 +60,8 @@ struct Tally {
     checked_against_oracle: usize,
     typed_error: usize,
     slowest: Duration,
+    /// The stored degree and the range of the slowest case.
+    slowest_case: Option<(usize, f64, f64)>,
 }
 
 /// One coefficient of a class chosen at random.
@@ -213,27 +217,52 @@ fn matches_oracle(got: &[f64], want: &[f64], x_tol: f64) -> Result<(), String> {
     Ok(())
 }
 
+/// Runs one case under [`catch_unwind`] and the clock: `None` when it passed within
+/// [`CASE_BUDGET`], else what went wrong.
+fn timed_case(coeffs: &[f64], lo: f64, hi: f64, x_tol: f64, tally: &mut Tally) -> Option<String> {
+    let start = Instant::now();
+    let result = catch_unwind(AssertUnwindSafe(|| run_case(coeffs, lo, hi, x_tol, tally)));
+    let elapsed = start.elapsed();
+    if elapsed > tally.slowest {
+        tally.slowest = elapsed;
+        tally.slowest_case = Some((coeffs.len().saturating_sub(1), lo, hi));
+    }
+    match result {
+        Ok(Ok(())) if elapsed <= CASE_BUDGET => None,
+        Ok(Ok(())) => Some(format!("took {elapsed:?}")),
+        Ok(Err(why)) => Some(why),
+        Err(_) => Some("panicked".to_string()),
+    }
+}
+
+/// Fails with every failure listed.
+fn assert_no_failures(failures: &[String]) {
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
 /// Runs `cases` fuzz cases from `seed` with degrees up to `max_degree`; panics with every
 /// failing input.
 fn fuzz(seed: u64, cases: usize, max_degree: usize) -> Tally {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut tally = Tally::default();
     let mut failures = Vec::new();
+    let trace = std::env::var_os("FUZZ_TRACE").is_some();
     for case in 0..cases {
         let coeffs = coefficients(&mut rng, max_degree);
         let (lo, hi) = range(&mut rng);
         let x_tol = tolerance(&mut rng);
-        let start = Instant::now();
-        let result = catch_unwind(AssertUnwindSafe(|| {
-            run_case(&coeffs, lo, hi, x_tol, &mut tally)
-        }));
-        let elapsed = start.elapsed();
-        tally.slowest = tally.slowest.max(elapsed);
-        let failure = match result {
-            Ok(Ok(())) if elapsed <= CASE_BUDGET => continue,
-            Ok(Ok(())) => format!("took {elapsed:?}"),
-            Ok(Err(why)) => why,
-            Err(_) => "panicked".to_string(),
+        if trace {
+            eprintln!(
+                "fuzz_coeffs seed {seed}: case {case}: {coeffs:?} on ({lo:e}, {hi:e}] x_tol {x_tol:e}"
+            );
+        }
+        let Some(failure) = timed_case(&coeffs, lo, hi, x_tol, &mut tally) else {
+            continue;
         };
         let failure = format!(
             "case {case}: coefficients {coeffs:?} on ({lo:e}, {hi:e}] x_tol {x_tol:e}: {failure}"
@@ -243,22 +272,17 @@ fn fuzz(seed: u64, cases: usize, max_degree: usize) -> Tally {
         failures.push(failure);
     }
     eprintln!("fuzz_coeffs seed {seed}: {cases} cases, {tally:?}");
-    assert!(
-        failures.is_empty(),
-        "{} failures:\n{}",
-        failures.len(),
-        failures.join("\n")
-    );
+    assert_no_failures(&failures);
     tally
 }
 
 /// The bounded smoke run; `FUZZ_CASES`, `FUZZ_SEED` and `FUZZ_MAX_DEGREE` make it longer or
 /// different.
 ///
-/// The smoke run draws degrees up to [`ORACLE_DEGREE`] only ([`SMOKE_MAX_DEGREE`]): the
-/// high-degree draws with coefficients up to `f64::MAX` still spend seconds per case in the
-/// `Exact` method's Sturm sequences (2000-bit coefficients) in a release build, minutes in a
-/// debug one. The bugs the fuzzer found (issue 13 follow-up) have their named regression
+/// The smoke run draws degrees up to [`ORACLE_DEGREE`] only ([`SMOKE_MAX_DEGREE`]): a
+/// high-degree draw with coefficients up to `f64::MAX` takes up to a second per case in a
+/// release build (the certified path's adaptive tiers; the `Exact` method's Sturm sequences
+/// took seconds until it moved to Descartes' rule), far more in a debug one. The bugs the fuzzer found (issue 13 follow-up) have their named regression
 /// tests in `tests/regression.rs`. Long campaign: `FUZZ_CASES=100000 FUZZ_SEED=7
 /// FUZZ_MAX_DEGREE=40 cargo test --release -p poly --test fuzz_coeffs -- --nocapture`.
 #[test]
@@ -273,6 +297,78 @@ fn fuzz_coefficients_smoke() {
     assert!(
         tally.checked_against_oracle > 0,
         "and some are checked: {tally:?}"
+    );
+}
+
+/// Coefficients of `s·Π(x − rᵢ)` (rounded in `f64`) for one to four roots `rᵢ` near `1e-156`
+/// (`±[1, 10)·10^e`, `e ∈ [−159, −153]`), sometimes a repeated one or one ordinary root in
+/// `(−5, 5)`, and a scale `s = 10^k`, `k ∈ [−5, 5]`: the products of the tiny roots are
+/// subnormal or zero, which is where bug 2 of the issue 13 follow-up (a root near 2e-156 off
+/// by 3e-13 relative at `x_tol = 0`) was seen once.
+fn tiny_root_coefficients(rng: &mut ChaCha8Rng) -> Vec<f64> {
+    let mut c = vec![10f64.powi(rng.gen_range(-5..=5))];
+    let times_root = |c: &mut Vec<f64>, r: f64| {
+        c.push(0.0);
+        for i in (0..c.len()).rev() {
+            let below = if i > 0 { c[i - 1] } else { 0.0 };
+            c[i] = below - r * c[i];
+        }
+    };
+    let mut last = 0.0;
+    for _ in 0..rng.gen_range(1..=4) {
+        let r = if last != 0.0 && rng.gen_bool(0.2) {
+            last
+        } else {
+            let sign = if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
+            sign * rng.gen_range(1.0..10.0) * 10f64.powi(rng.gen_range(-159..=-153))
+        };
+        times_root(&mut c, r);
+        last = r;
+    }
+    if rng.gen_bool(0.3) {
+        times_root(&mut c, rng.gen_range(-5.0..5.0));
+    }
+    c
+}
+
+/// Cases of the tiny-root smoke run (about 0.1 s each in a release build: the exact oracle
+/// bisects to the correctly rounded root through subnormal denominators).
+const TINY_SMOKE_CASES: usize = 12;
+
+/// Bug 2's targeted generator ([`tiny_root_coefficients`]) on ranges around the tiny roots,
+/// `x_tol = 0`, every method and query, the certified ones against the exact oracle. Smoke
+/// run here; long run: `FUZZ_TINY_CASES=200000 cargo test --release -p poly --test
+/// fuzz_coeffs tiny -- --nocapture`.
+#[test]
+fn fuzz_tiny_roots_against_the_oracle() {
+    let cases = env_or("FUZZ_TINY_CASES", TINY_SMOKE_CASES);
+    let mut rng = ChaCha8Rng::seed_from_u64(env_or("FUZZ_SEED", 156));
+    let mut tally = Tally::default();
+    let mut failures = Vec::new();
+    let ranges = [
+        (-1e-150, 1e-150),
+        (0.0, 1e-150),
+        (-1e-150, 0.0),
+        (1e-160, 1e-150),
+        (-10.0, 10.0),
+        (-1e300, 1e300),
+    ];
+    for case in 0..cases {
+        let coeffs = tiny_root_coefficients(&mut rng);
+        let (lo, hi) = ranges[rng.gen_range(0..ranges.len())];
+        let Some(failure) = timed_case(&coeffs, lo, hi, 0.0, &mut tally) else {
+            continue;
+        };
+        let failure =
+            format!("case {case}: coefficients {coeffs:?} on ({lo:e}, {hi:e}]: {failure}");
+        eprintln!("fuzz_tiny_roots: {failure}");
+        failures.push(failure);
+    }
+    eprintln!("fuzz_tiny_roots: {cases} cases, {tally:?}");
+    assert_no_failures(&failures);
+    assert!(
+        tally.checked_against_oracle > cases / 2,
+        "most cases reach the oracle: {tally:?}"
     );
 }
 

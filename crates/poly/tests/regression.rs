@@ -538,3 +538,51 @@ fn overflowing_end_value_was_taken_for_a_root() {
         }
     }
 }
+
+/// Issue 11, "heuristic methods never lie silently", found by the coefficient fuzzer (seed
+/// 13, smoke case 59): `x·(1.149e183·x² − 0.15·x − 2.2e-308)` has the roots −1.48e-307, 0 and
+/// 1.31e-184 in `(−1e300, 1e300]`, and the `Sturm` method answered "no root" for all of them
+/// (its `f64` sequence of coefficients this wide counts nothing). Its count is now checked
+/// against the stored polynomial's certified end signs and its own evaluation bounds: it
+/// reports `Unresolved` instead of an empty answer.
+#[test]
+fn sturm_heuristic_answered_no_root_against_certified_opposite_signs() {
+    let p = Poly::new(vec![
+        0.0,
+        -2.2250738585072014e-308,
+        -0.14999100416109323,
+        1.148912830499637e183,
+    ]);
+    let (lo, hi) = (-1e300, 1e300);
+    let want = oracle(&p, lo, hi);
+    assert_eq!(want.len(), 3, "the oracle: {want:?}");
+    let o = with(IsolationMethod::Sturm, 0.0);
+    match p.real_roots_with(lo, hi, &o, &mut RootStats::default()) {
+        Ok(got) => assert_roots_match(&got, &want, 0.0, "Sturm all"),
+        Err(e) => assert!(matches!(e, RootError::Unresolved { .. }), "{e}"),
+    }
+    match p.try_smallest_root(lo, hi, &o, &mut RootStats::default()) {
+        Ok(got) => assert_eq!(got, Some(want[0]), "Sturm smallest"),
+        Err(e) => assert!(matches!(e, RootError::Unresolved { .. }), "{e}"),
+    }
+}
+
+/// Open bug found by bug 2's targeted generator (`fuzz_tiny_roots_against_the_oracle`, seed
+/// 156, case 4554 of 5 000): on `(−1e-150, 0]` the certified (Bernstein) method answers "no
+/// root" for `1e5·x³ − 72295·x² − 3.8e-153·x − 5.0e-311`, whose roots −2.6317709670736774e-158
+/// and −2.6317702326124643e-158 (7e-165 apart) the `Exact` method and the exact oracle find.
+/// Near them `p` is about 1e-311 (subnormal); the query ends in the double-double tier
+/// (`adaptive_pieces: 2`, no multiprecision piece), and on `(−1e-150, −1e-160]` or `(−1, 1]`
+/// the same method finds both. Ignored until the tier's underflow allowance is fixed:
+/// `cargo test -p poly --test regression -- --ignored certified_missed`.
+#[test]
+#[ignore = "open bug: the certified path misses two roots near -2.63e-158 on (-1e-150, 0]"]
+fn certified_missed_two_subnormal_valued_roots_on_a_range_ending_at_zero() {
+    let p = Poly::new(vec![
+        -5.007317793518e-311,
+        -3.8052843920488434e-153,
+        -72295.13834290397,
+        100000.0,
+    ]);
+    check_against_oracle(&[(p, -1e-150, 0.0)]);
+}

@@ -178,13 +178,22 @@ fn wilkinson_20_f64_path_finds_the_roots_of_the_stored_polynomial() {
     // signs of this degree-20 polynomial with 19-digit coefficients and redoes the query
     // exactly, once (the whole query, not per root).
     assert!(stats.exact_fallbacks <= 1, "{stats:?}");
-    // The floating-point Sturm sequence (a heuristic) happens to count all of them here.
+    // The floating-point Sturm sequence (a heuristic) counted all of them here by luck: near
+    // the moved roots some member's sign is below its own rounding bound and decides the
+    // count, and since issue 11 ("heuristic methods never lie silently") it says so instead
+    // of answering. Either way it never answers wrongly.
     let opts = RootOptions {
         isolation: IsolationMethod::Sturm,
         ..RootOptions::new(1e-9)
     };
-    let sturm = w.real_roots_with(0.0, 25.0, &opts, &mut stats).unwrap();
-    assert_eq!(sturm.len(), exact.len(), "normalised f64 Sturm: {sturm:?}");
+    match w.real_roots_with(0.0, 25.0, &opts, &mut stats) {
+        Ok(sturm) => assert_eq!(sturm.len(), exact.len(), "normalised f64 Sturm: {sturm:?}"),
+        Err(RootError::Unresolved { lo, hi }) => assert!(
+            exact.iter().any(|&r| lo < r && r <= hi),
+            "the unresolved piece ({lo}, {hi}] holds stored roots: {exact:?}"
+        ),
+        Err(e) => panic!("normalised f64 Sturm: {e}"),
+    }
     // The first few roots are well conditioned and stay close to the integers.
     assert!(
         (got[0] - 1.0).abs() < 1e-9 && (got[1] - 2.0).abs() < 1e-9,

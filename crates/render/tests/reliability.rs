@@ -365,3 +365,53 @@ fn stats_name_the_slowest_cell_and_its_object() {
         "{report}"
     );
 }
+
+/// Item 8: any endless or huge file as the scene or a control-points file must be bounded.
+/// The special files have their test (`render-cli`'s `special_files_as_the_scene_...`);
+/// this is the huge *regular* file: one byte over [`MAX_SCENE_BYTES`] (a sparse file, so
+/// the test writes nothing) is refused with the limit named, before any of it is read, and
+/// so is a `.bpt` one byte over [`MAX_CONTROL_POINT_BYTES`].
+#[test]
+fn files_beyond_the_read_limits_are_refused_naming_the_limit() {
+    use render::scene::{MAX_CONTROL_POINT_BYTES, MAX_SCENE_BYTES};
+    let dir = tempfile::tempdir().unwrap();
+    let sparse = |name: &str, len: u64| {
+        let path = dir.path().join(name);
+        std::fs::File::create(&path).unwrap().set_len(len).unwrap();
+        path
+    };
+    // The message and its causes, as the CLI prints them (`{:#}`).
+    let chain = |e: &dyn std::error::Error| {
+        let mut text = e.to_string();
+        let mut cause = e.source();
+        while let Some(c) = cause {
+            text = format!("{text}: {c}");
+            cause = c.source();
+        }
+        text
+    };
+    let big = sparse("big.scene", MAX_SCENE_BYTES + 1);
+    let e = chain(&render::scene::load(&big).unwrap_err());
+    assert!(
+        e.contains(&format!("longer than the limit of {MAX_SCENE_BYTES} bytes")),
+        "{e}"
+    );
+    sparse("big.bpt", MAX_CONTROL_POINT_BYTES + 1);
+    let scene = dir.path().join("mesh.scene");
+    std::fs::write(
+        &scene,
+        format!("{CAMERA}#object Type = BEZIER_MESH Control points = big.bpt\n"),
+    )
+    .unwrap();
+    let e = render::scene::load(&scene).unwrap_err().to_string();
+    assert!(
+        e.contains(&format!(
+            "longer than the limit of {MAX_CONTROL_POINT_BYTES} bytes"
+        )),
+        "{e}"
+    );
+    // Within the limit the size check passes: 64 NUL bytes fail as text, not by size.
+    let at = sparse("small.scene", 64);
+    let e = chain(&render::scene::load(&at).unwrap_err());
+    assert!(!e.contains("longer than the limit"), "{e}");
+}

@@ -133,4 +133,19 @@ mod tests {
             "NaN"
         );
     }
+
+    /// Issue 13, item 14: the docs said `.bpt` degrees ≤ 3 while up to 6 was accepted. The
+    /// documented limit (`paper-notes/scene-language.md`: `n, m ≤ 6`) is the enforced one,
+    /// and the message names it.
+    #[test]
+    fn the_documented_degree_limit_is_the_enforced_one() {
+        assert_eq!(MAX_PATCH_DEGREE, 6, "paper-notes/scene-language.md says 6");
+        assert!(
+            ControlNet::new(6, 6, vec![DVec3::ZERO; 49]).is_ok(),
+            "6 x 6 is accepted"
+        );
+        let e = ControlNet::new(7, 1, vec![DVec3::ZERO; 16]).unwrap_err();
+        assert_eq!(e, PatchError::Degree { n: 7, m: 1 }, "7 is refused");
+        assert!(e.to_string().contains("between 1 and 6"), "{e}");
+    }
 }
