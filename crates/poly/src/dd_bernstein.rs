@@ -23,8 +23,8 @@
 use smallvec::SmallVec;
 
 use crate::bernstein::Bracket;
-use crate::double_double::{DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, two_sum};
-use crate::eval_bound::abs_weights;
+use crate::double_double::{DD_MIN_EXACT, DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, two_sum};
+use crate::eval_bound::{abs_weights, chain_underflow_weight};
 use crate::stats::RootStats;
 
 /// Highest degree handled: `C(n, j)` must be exact in `f64` (`C(56, 28) < 2^53`).
@@ -169,7 +169,11 @@ impl<'c> DdBernstein<'c> {
         // Underflow: at most DD_UNDERFLOW per operation, amplified by at most r per Horner
         // step and by powers of |w| ≤ r, by at most 2ⁿ in the basis change; at most (n + 1)²
         // operations feed each output (doubled for the scaling step). Averages only add.
-        let tiny0 = 2.0 * DD_UNDERFLOW * zr * 2f64.powi(n as i32) * ((n + 1) * (n + 1)) as f64;
+        // The chain wʲ of step 2 (its errors multiplied by the shifted coefficients):
+        // `chain_underflow_weight`.
+        let chain = chain_underflow_weight(c, e, wh, DD_MIN_EXACT);
+        let tiny0 =
+            2.0 * DD_UNDERFLOW * (zr + chain) * 2f64.powi(n as i32) * ((n + 1) * (n + 1)) as f64;
         let (dh, dl) = two_sum(y, -x);
         Some(DdBernstein {
             c,

@@ -19,6 +19,11 @@ pub(crate) const DD_UNIT: f64 = 8.0 * (0.5 * f64::EPSILON) * (0.5 * f64::EPSILON
 /// numbers never err by underflow.) So `4·2^-1075 < 2^-1072`, rounded up to a power of two.
 pub(crate) const DD_UNDERFLOW: f64 = 4.0 * ETA;
 
+/// Magnitude from which a double-double product is within [`DD_UNIT`] relatively, without
+/// underflow: `2^-900`, so that even its error term `2^-106` below stays a normal number
+/// (`≥ 2^-1022`).
+pub(crate) const DD_MIN_EXACT: f64 = f64::from_bits((1023 - 900) << 52);
+
 /// `γ(k) = k·u/(1 − k·u)` for unit roundoff `u`, rounded up; infinite when `k·u ≥ 1/2`.
 pub(crate) fn gamma_u(k: usize, u: f64) -> f64 {
     let ku = k as f64 * u;

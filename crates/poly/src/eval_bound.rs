@@ -203,6 +203,26 @@ pub(crate) fn certified_value(c: &[f64], x: f64) -> (f64, i8) {
     }
 }
 
+/// The factor by which an underflow error of one operation in the chain `w, w², …, wⁿ` can
+/// reach a Bernstein coefficient, when the chain can underflow (some `|w|ʲ` below
+/// `min_normal`, the smallest magnitude at which the format's products are still exact to
+/// its unit); 0 when it cannot. Why: the runs that shift by `a` and then scale the shifted
+/// coefficients `r_j` by `wʲ` multiply the chain's absolute underflow error by `|r_j|`,
+/// which the allowance per operation (amplified only by `|a|`, `|w|` and the basis change)
+/// did not cover: `1e5·x³ − 72295·x² − …` on `(−2.6e-158, 0]` had `w²` subnormal and a
+/// coefficient off by `72295·2^-1074`, twenty times its bound, and two roots were missed
+/// (issue 13 follow-up). Bound: each of the `j ≤ n` products adds at most one unit, later
+/// products multiply it by `|w|`, and `|r_j| ≤ Σ_k |c_k|·C(k, j)·|a|^{k−j} ≤ Σ_k |c_k|(1 + |a|)ᵏ`.
+pub(crate) fn chain_underflow_weight(c: &[f64], a: f64, w: f64, min_normal: f64) -> f64 {
+    let n = c.len() - 1;
+    let aw = w.abs();
+    if aw.min(1.0).powi(n as i32) >= min_normal {
+        return 0.0;
+    }
+    let r = abs_weights(c, 1.0 + a.abs()).0;
+    n as f64 * (1.0 + aw).powi(n as i32) * r * (1.0 + 4.0 * f64::EPSILON)
+}
+
 /// `Σ|cᵢ|·rⁱ` rounded up (Horner on non-negative numbers is increasing; `2n + 2` roundings,
 /// inflated for them), and `Σ rⁱ` likewise.
 pub(crate) fn abs_weights(c: &[f64], r: f64) -> (f64, f64) {

@@ -28,8 +28,8 @@ use smallvec::SmallVec;
 
 use crate::bernstein::Bracket;
 use crate::dd_bernstein::{DdBernstein, DdOutcome};
-use crate::double_double::{DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, two_sum};
-use crate::eval_bound::{abs_weights, certified_sign, certified_value};
+use crate::double_double::{DD_MIN_EXACT, DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, two_sum};
+use crate::eval_bound::{abs_weights, certified_sign, certified_value, chain_underflow_weight};
 use crate::refine::{IllinoisEnd, illinois_by};
 use crate::root_options::Tolerance;
 use crate::scalar::rat_from_f64;
@@ -490,10 +490,13 @@ fn classify<A: Arith>(
     // Underflow: each operation may add `η`; a later Horner step multiplies such an error by
     // at most |a| + |w| = r, the basis change by at most C(n, i) ≤ 2ⁿ; at most (n + 1)²
     // operations feed each output.
+    // The scaling chain wʲ multiplies its underflow errors by the shifted coefficients
+    // (`chain_underflow_weight`).
     let tiny = if A::WIDE_RANGE {
         0.0
     } else {
-        ar.underflow() * zr * 2f64.powi(n as i32) * ((n + 1) * (n + 1)) as f64
+        let chain = chain_underflow_weight(c, a, wh, DD_MIN_EXACT);
+        ar.underflow() * (zr + chain) * 2f64.powi(n as i32) * ((n + 1) * (n + 1)) as f64
     };
     let mut binom = 1.0f64;
     let mut prev = s_a;

@@ -567,16 +567,17 @@ fn sturm_heuristic_answered_no_root_against_certified_opposite_signs() {
     }
 }
 
-/// Open bug found by bug 2's targeted generator (`fuzz_tiny_roots_against_the_oracle`, seed
-/// 156, case 4554 of 5 000): on `(−1e-150, 0]` the certified (Bernstein) method answers "no
-/// root" for `1e5·x³ − 72295·x² − 3.8e-153·x − 5.0e-311`, whose roots −2.6317709670736774e-158
-/// and −2.6317702326124643e-158 (7e-165 apart) the `Exact` method and the exact oracle find.
-/// Near them `p` is about 1e-311 (subnormal); the query ends in the double-double tier
-/// (`adaptive_pieces: 2`, no multiprecision piece), and on `(−1e-150, −1e-160]` or `(−1, 1]`
-/// the same method finds both. Ignored until the tier's underflow allowance is fixed:
-/// `cargo test -p poly --test regression -- --ignored certified_missed`.
+/// Found by bug 2's targeted generator (`fuzz_tiny_roots_against_the_oracle`, seed 156, case
+/// 4554 of 5 000): on `(−1e-150, 0]` the certified (Bernstein) method answered "no root" for
+/// `1e5·x³ − 72295·x² − 3.8e-153·x − 5.0e-311`, whose roots −2.6317709670736774e-158 and
+/// −2.6317702326124643e-158 (7e-165 apart) the `Exact` method and the exact oracle find.
+/// Cause: the double-double de Casteljau run scales the shifted coefficients by `wʲ`
+/// (`w ≈ −2.6e-158`, so `w²` is subnormal), and the underflow error of that chain reached a
+/// coefficient multiplied by `72295`, twenty times the allowance, which had counted only
+/// `|a|`, `|w|` and the basis change: `p` at a node end came out positive where it is
+/// `−3.1e-321`. Fixed by `eval_bound::chain_underflow_weight` in that allowance (and in the
+/// `f64` run's and the per-node double-double tier's, which scale the same way).
 #[test]
-#[ignore = "open bug: the certified path misses two roots near -2.63e-158 on (-1e-150, 0]"]
 fn certified_missed_two_subnormal_valued_roots_on_a_range_ending_at_zero() {
     let p = Poly::new(vec![
         -5.007317793518e-311,
