@@ -9,7 +9,7 @@ use std::fmt;
 use std::ops::{Add, Mul, Neg, Sub};
 
 use glam::DVec3;
-use poly::Poly;
+use poly::{Poly, QPoly, Rat};
 
 /// One monomial `coeff · x^e[0] · y^e[1] · z^e[2]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -423,6 +423,87 @@ impl Poly3 {
                 }
             }
         }
+    }
+
+    /// `K`: the most roundings on any path of [`Poly3::restrict_into`] from the stored
+    /// coefficients and the ray's `o`, `d` to one restricted coefficient, so that (Higham's
+    /// standard model, §3.1) each computed coefficient `ĉₘ` satisfies
+    /// `|ĉₘ − cₘ| ≤ γ(K)·c̃ₘ` with `c̃ₘ` the same program run on absolute values: the
+    /// coefficient of `tᵐ` in `F_abs(|o| + t|d|)`, `F_abs` being `F` with absolute-value
+    /// coefficients (`paper-notes/implicit-surfaces.md` §6).
+    ///
+    /// The count: a power row `(o + d t)^e` takes two roundings per level (a product and a
+    /// sum), `2e`; the products `a·z`, `y·z`, `x·y` one each; and a sum of `n` terms computed
+    /// left to right puts its first term through `n − 1` additions. The sums are the `z`
+    /// sums (at most the size of an `(i, j)` group), the `y` sums (`Σ_j (j + 1)` over a
+    /// group of `x` exponent `i`) and the output sums (`Σ_i (i + 1)`), so
+    /// `K = 2N + 3 + Z + Y + X`.
+    pub fn restriction_rounding_steps(&self) -> u32 {
+        let (mut z_max, mut y_max, mut x_sum) = (0u32, 0u32, 0u32);
+        let terms = &self.terms;
+        let mut start = 0;
+        while start < terms.len() {
+            let i = terms[start].exps[0];
+            let mut y_sum = 0;
+            while start < terms.len() && terms[start].exps[0] == i {
+                let j = terms[start].exps[1];
+                let mut group = 0;
+                while start < terms.len() && terms[start].exps[0] == i && terms[start].exps[1] == j
+                {
+                    group += 1;
+                    start += 1;
+                }
+                z_max = z_max.max(group);
+                y_sum += j + 1;
+            }
+            y_max = y_max.max(y_sum);
+            x_sum += i + 1;
+        }
+        2 * self.degree() + 3 + z_max + y_max + x_sum
+    }
+
+    /// An upper bound on `F_abs(y) = Σ|a_ijk| y_x^i y_y^j y_z^k` for `y ≥ 0` componentwise:
+    /// each power by repeated multiplication (`e − 1` roundings), each term three products
+    /// more, the sum one rounding per term, and the result inflated by `2γ(N + 3 + terms)`
+    /// (`1/(1 − γ) ≤ 1 + 2γ`). `+∞` on overflow.
+    pub fn eval_abs_upper(&self, y: DVec3) -> f64 {
+        let pow = |x: f64, e: u32| (0..e).fold(1.0, |p, _| p * x);
+        let sum: f64 = self
+            .terms
+            .iter()
+            .map(|t| {
+                t.coeff.abs() * pow(y.x, t.exps[0]) * pow(y.y, t.exps[1]) * pow(y.z, t.exps[2])
+            })
+            .sum();
+        let steps = self.degree() as usize + 3 + self.terms.len();
+        sum * (1.0 + 2.0 * crate::geometry::gamma(steps))
+    }
+
+    /// The restriction `t ↦ F(o + t·d)` in exact rational arithmetic, from the stored `f64`
+    /// coefficients and the exact `o`, `d`: the reference the rounded restriction is
+    /// certified against (`--isolation exact`, and the renderer's fallback when the rounding
+    /// bound is too wide to decide a ray).
+    pub fn restrict_exact(&self, o: &[Rat; 3], d: &[Rat; 3]) -> QPoly {
+        let deg = self.partial_degrees();
+        let rows: Vec<Vec<QPoly>> = (0..3)
+            .map(|k| {
+                let line = QPoly::new(vec![o[k].clone(), d[k].clone()]);
+                let mut row = vec![QPoly::new(vec![Rat::from_integer(1.into())])];
+                for e in 1..=deg[k] as usize {
+                    let next = &row[e - 1] * &line;
+                    row.push(next);
+                }
+                row
+            })
+            .collect();
+        let mut out = QPoly::new(vec![]);
+        for t in &self.terms {
+            let a = poly::rat_from_f64(t.coeff).expect("finite coefficients were checked");
+            let m = &(&rows[0][t.exps[0] as usize] * &rows[1][t.exps[1] as usize])
+                * &rows[2][t.exps[2] as usize];
+            out = &out + &(&m * &QPoly::new(vec![a]));
+        }
+        out
     }
 
     /// `c·F`.
