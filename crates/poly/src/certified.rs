@@ -84,6 +84,9 @@ pub(crate) struct CertifiedSearch<'p> {
     exact: Option<SturmSequence<Rat>>,
     /// The caller's value slack (none: the stored polynomial is the true one).
     slack: Slack<'p>,
+    /// The slack at the radius of the query's range, `(radius, slack)`: asked once, and valid
+    /// on every piece (a slack is non-decreasing in the radius).
+    pub(crate) top_slack: (f64, f64),
     /// With a slack, the piece where `f64` could not decide and the search stopped: more
     /// precision of the stored coefficients cannot help there ([`RootError::SlackLimited`]).
     ///
@@ -104,8 +107,9 @@ impl<'p> CertifiedSearch<'p> {
         slack: Slack<'p>,
         stats: &mut RootStats,
     ) -> Self {
-        let signs = end_signs(p.coeffs(), lo, hi, slack);
-        Self::run_with_signs(p, (lo, hi), signs, first_only, slack, stats)
+        let range_slack = slack.at(lo.abs().max(hi.abs()));
+        let signs = end_signs(p.coeffs(), lo, hi, slack, range_slack);
+        Self::run_with_signs(p, (lo, hi), signs, first_only, (slack, range_slack), stats)
     }
 
     /// As [`run`](Self::run), with the caller's [`certified_sign`]s of `p(lo)`, `p(hi)` (0
@@ -115,7 +119,7 @@ impl<'p> CertifiedSearch<'p> {
         (lo, hi): (f64, f64),
         signs: (i8, i8),
         first_only: bool,
-        slack: Slack<'p>,
+        (slack, range_slack): (Slack<'p>, f64),
         stats: &mut RootStats,
     ) -> Self {
         let mut search = CertifiedSearch {
@@ -130,11 +134,21 @@ impl<'p> CertifiedSearch<'p> {
             splits: 0,
             exact: None,
             slack,
+            top_slack: (lo.abs().max(hi.abs()), range_slack),
             slack_limited: None,
             found: SmallVec::new(),
         };
         search.start(lo, hi, signs, stats);
         search
+    }
+
+    /// The slack at radius `r` (the query's own without asking again).
+    fn slack_at(&self, r: f64) -> f64 {
+        if r == self.top_slack.0 {
+            self.top_slack.1
+        } else {
+            self.slack.at(r)
+        }
     }
 
     /// The exact sequence, when some piece needed it.
@@ -211,7 +225,7 @@ impl<'p> CertifiedSearch<'p> {
             self.p.coeffs(),
             (lo, hi),
             s,
-            self.slack.at(lo.abs().max(hi.abs())),
+            self.slack_at(lo.abs().max(hi.abs())),
             self.first_only,
             &mut out,
             &mut self.splits,
@@ -244,7 +258,7 @@ impl<'p> CertifiedSearch<'p> {
             if no_gain {
                 return self.adaptive(lo, hi, s, stats);
             }
-            let slack = self.slack.at(lo.abs().max(hi.abs()));
+            let slack = self.slack_at(lo.abs().max(hi.abs()));
             let Some((m, s_m)) = split_point(self.p.coeffs(), lo, hi, slack) else {
                 return self.adaptive(lo, hi, s, stats);
             };
@@ -309,18 +323,27 @@ impl<'p> CertifiedSearch<'p> {
     }
 }
 
-/// The certified signs of `p(lo)` and `p(hi)` (0 where not certain), each with the slack at
-/// its own point's radius: a value needs the slack at `|x|` only, which near the expansion
-/// point of a high-degree restriction is far below the slack at the range's far end.
-pub(crate) fn end_signs(c: &[f64], lo: f64, hi: f64, slack: Slack<'_>) -> (i8, i8) {
+/// The certified signs of `p(lo)` and `p(hi)` (0 where not certain) with `range_slack`, the
+/// slack at `max(|lo|, |hi|)`; an end it leaves undecided is tried again with the slack at its
+/// own radius (a value at `x` needs only `slack(|x|)`, which near the expansion point of a
+/// high-degree restriction is far below the slack at the range's far end).
+pub(crate) fn end_signs(
+    c: &[f64],
+    lo: f64,
+    hi: f64,
+    slack: Slack<'_>,
+    range_slack: f64,
+) -> (i8, i8) {
+    let (mut s_lo, mut s_hi) = certified_sign_pair(c, lo, hi, range_slack);
     if slack.is_some() {
-        (
-            certified_sign(c, lo, slack.at(lo)),
-            certified_sign(c, hi, slack.at(hi)),
-        )
-    } else {
-        certified_sign_pair(c, lo, hi, 0.0)
+        if s_lo == 0 && lo.abs() < hi.abs() {
+            s_lo = certified_sign(c, lo, slack.at(lo));
+        }
+        if s_hi == 0 && hi.abs() < lo.abs() {
+            s_hi = certified_sign(c, hi, slack.at(hi));
+        }
     }
+    (s_lo, s_hi)
 }
 
 /// A point strictly inside `(lo, hi)` with a certified sign (adaptive precision), near `end`

@@ -299,8 +299,12 @@ impl Poly<f64> {
         slack: Slack<'_>,
         stats: &mut RootStats,
     ) -> Result<Option<f64>, RootError> {
-        if slack.is_some() {
-            slack_applies(self, t_min, t_max, opts)?;
+        if slack.is_some() && !slack_applies(t_min, t_max, opts) {
+            validate(self, t_min, t_max, opts)?;
+            return Err(RootError::SlackLimited {
+                lo: t_min,
+                hi: t_max,
+            });
         }
         let (lo, hi) = if self.degree() == 1
             && !slack.is_some()
@@ -516,8 +520,9 @@ impl Poly<f64> {
     ) -> Result<(), RootError> {
         let before = out.len();
         let found = stats.record_all(self.degree(), |s| {
-            if slack.is_some() {
-                slack_applies(self, a, b, opts)?;
+            if slack.is_some() && !slack_applies(a, b, opts) {
+                validate(self, a, b, opts)?;
+                return Err(RootError::SlackLimited { lo: a, hi: b });
             }
             self.real_roots_push(a, b, opts, slack, s, out)?;
             Ok(out.len() - before)
@@ -682,16 +687,12 @@ fn no_root_by_descartes(c: &[f64], lo: f64, hi: f64, slack: f64) -> bool {
     }
 }
 
-/// With a value slack: refuses (as [`RootError::SlackLimited`] on the whole range) what a
-/// slack cannot apply to — an infinite end (no finite radius bounds the difference) and the
-/// methods that certify only the stored coefficients (exact) or nothing (the Sturm
-/// heuristics).
-fn slack_applies(p: &Poly<f64>, lo: f64, hi: f64, opts: &RootOptions) -> Result<(), RootError> {
-    validate(p, lo, hi, opts)?;
-    if opts.isolation != IsolationMethod::Bernstein || !(lo.is_finite() && hi.is_finite()) {
-        return Err(RootError::SlackLimited { lo, hi });
-    }
-    Ok(())
+/// Whether a value slack can apply to a query on `(lo, hi]`: not with an infinite end (no
+/// finite radius bounds the difference), nor with the methods that certify only the stored
+/// coefficients (exact) or nothing (the Sturm heuristics). Such queries are refused as
+/// [`RootError::SlackLimited`] on the whole range (after the usual validation).
+fn slack_applies(lo: f64, hi: f64, opts: &RootOptions) -> bool {
+    opts.isolation == IsolationMethod::Bernstein && lo.is_finite() && hi.is_finite()
 }
 
 /// The default certified query: closed form, then Bernstein isolation, then refinement; with
@@ -725,13 +726,14 @@ fn certified_smallest(
         stats.exact_fallbacks += 1;
         return Ok(exact_smallest(p, lo, hi, opts.tolerance(), stats));
     }
-    let signs = end_signs(c, lo, hi, slack);
+    let signs = end_signs(c, lo, hi, slack, range_slack);
     if hi - lo <= opts.tolerance().on(lo, hi) && signs.0 * signs.1 < 0 {
         // Every point of the interval is within x_tol of any root in it, and opposite end
         // signs prove one: no isolation needed (a shadow ray's "is anything in the way").
         return Ok(Some(lo + 0.5 * (hi - lo)));
     }
-    let search = CertifiedSearch::run_with_signs(p, (lo, hi), signs, true, slack, stats);
+    let search =
+        CertifiedSearch::run_with_signs(p, (lo, hi), signs, true, (slack, range_slack), stats);
     match (search.found.first(), search.slack_limited) {
         (Some(first), _) => refine_found(p, &search, first, opts, slack, stats).map(Some),
         (None, Some((lo, hi))) => Err(RootError::SlackLimited { lo, hi }),
@@ -758,7 +760,7 @@ fn refine_found(
         // The slack is taken at the bracket's radius; when refinement stops, at the narrower
         // stuck bracket's (a slack of degree N falls like Rᴺ), and refinement goes on from
         // there; last, point by point.
-        let (mut b, mut s) = (*b, slack.at(b.lo.abs().max(b.hi.abs())));
+        let (mut b, mut s) = (*b, search.top_slack.1);
         for _ in 0..MAX_SLACK_RETRIES {
             match refine_bracket(p.coeffs(), b, opts.tolerance(), opts.refine, s, stats) {
                 Refined::Root(r) => return Ok(r),

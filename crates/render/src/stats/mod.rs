@@ -74,9 +74,13 @@ pub struct TraceStats {
 /// `roots.slack_limited`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct CertificationStats {
-    /// Rays restricted and isolated again in exact rational arithmetic.
+    /// Rays restricted again in exact rational arithmetic (then rounded to `f64` with a
+    /// slack of the polynomial's own scale, which decides most).
     pub exact_restrictions: u64,
-    /// Of those, rays above
+    /// Of those, rays whose rounded exact restriction still decided nothing, isolated with
+    /// exact Sturm sequences.
+    pub exact_isolations: u64,
+    /// Of the [`exact_restrictions`](Self::exact_restrictions), rays above
     /// [`EXACT_RESTRICTION_MAX_DEGREE`](crate::surface::EXACT_RESTRICTION_MAX_DEGREE), answered
     /// for the rounded restriction: the pixel may be wrong, and this says how many.
     pub undecided_rays: u64,
@@ -128,6 +132,7 @@ impl TraceStats {
         self.tir_merged += o.tir_merged;
         self.singular_normals += o.singular_normals;
         self.surface_certification.exact_restrictions += o.surface_certification.exact_restrictions;
+        self.surface_certification.exact_isolations += o.surface_certification.exact_isolations;
         self.surface_certification.undecided_rays += o.surface_certification.undecided_rays;
         self.roots.merge(&o.roots);
         self.patches.merge(&o.patches);
@@ -415,7 +420,12 @@ impl fmt::Display for StatsReport<'_> {
         )?;
         writeln!(
             f,
-            "    undecided rays (degree > {:>2})    {:>12}",
+            "      isolated exactly               {:>12}",
+            c.exact_isolations
+        )?;
+        writeln!(
+            f,
+            "      undecided rays (degree > {:>2})  {:>12}",
             crate::surface::EXACT_RESTRICTION_MAX_DEGREE,
             c.undecided_rays
         )?;

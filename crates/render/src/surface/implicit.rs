@@ -119,6 +119,8 @@ pub struct Implicit<F> {
     weights: DVec3,
     /// `K` of the shape's restriction ([`ImplicitFn::restriction_rounding_steps`]).
     rounding_steps: u32,
+    /// The relative factor of the restriction's slack ([`slack_rel`]).
+    slack_rel: f64,
 }
 
 impl<F: ImplicitFn> Implicit<F> {
@@ -134,6 +136,7 @@ impl<F: ImplicitFn> Implicit<F> {
         let weights = DVec3::from_array(f.poly().partial_degrees().map(f64::from));
         let rounding_steps = f.restriction_rounding_steps();
         Implicit {
+            slack_rel: slack_rel(rounding_steps, degree),
             f,
             weights,
             rounding_steps,
@@ -165,6 +168,13 @@ impl<F: ImplicitFn> Implicit<F> {
     /// The wrapped function.
     pub fn function(&self) -> &F {
         &self.f
+    }
+
+    /// Whether rays are certified against the surface as written (§6): degrees 1–2 keep their
+    /// closed forms, whose restriction loses a few ulps (§2); the heuristic methods certify
+    /// nothing, and the exact one restricts exactly.
+    fn certifies(&self) -> bool {
+        self.degree >= 3 && self.roots.isolation == IsolationMethod::Bernstein
     }
 
     /// The root tolerance in `t` for a ray with direction `d` (see [`ROOT_X_TOL_REL`]): relative
@@ -283,9 +293,18 @@ fn smallest_root_split(
     Ok(None)
 }
 
-/// The bound on the rounding of a restriction at `o` (the computed `ray.at(t0)`, within
-/// `o_err` of the exact point) as `poly` asks for it: `slack(R) ≥ Σₘ |c_true,m − ĉₘ|·Rᵐ`,
-/// where `c_true` is the exact restriction of the surface as written along the exact ray.
+/// `slack_rel` of [`restriction_slack`] for a restriction program with `steps` roundings
+/// (`K`) of a surface of total degree `degree`: `γ(K) + N·η` with `η = u(1 + 4ε)`, both
+/// rounded up (`paper-notes/implicit-surfaces.md` §6).
+fn slack_rel(steps: u32, degree: u32) -> f64 {
+    let eta = UNIT_ROUNDOFF * (1.0 + 4.0 * f64::EPSILON);
+    (gamma(steps as usize) + f64::from(degree) * eta) * (1.0 + 2.0 * f64::EPSILON)
+}
+
+/// The bound on the rounding of a restriction at `o` (`origin + t0·dir` rounded once per
+/// axis, so within `o_err = u·|o|` of the exact point) as `poly` asks for it:
+/// `slack(R) ≥ Σₘ |c_true,m − ĉₘ|·Rᵐ`, where `c_true` is the exact restriction of the surface
+/// as written along the exact ray.
 ///
 /// Two parts, both read off one evaluation of `G` ([`ImplicitFn::restriction_abs`]) at
 /// `Y = |o| + o_err + R|d|` (`paper-notes/implicit-surfaces.md` §6):
@@ -294,24 +313,13 @@ fn smallest_root_split(
 /// - the rounding of the restriction point: the exact polynomials at `o + e` and at `o`,
 ///   `|e| ≤ o_err`, differ coefficientwise by at most those of
 ///   `F_abs(|o| + o_err + t|d|) − F_abs(|o| + t|d|)`, which at `t = R` is at most
-///   `(1 − (1 − η)^N)·F_abs(Y) ≤ N·η·G(Y)` with `η = maxₖ o_errₖ / Yₖ` (each monomial of
+///   `(1 − (1 − η)^N)·F_abs(Y) ≤ N·η·G(Y)` with `η = maxₖ o_errₖ / Yₖ ≤ u` (each monomial of
 ///   degree `≤ N` loses at least the factor `(1 − η)^N` when `Y` shrinks by `o_err`).
 ///
-/// The factors `(1 + 2ε)` and `(1 + 4ε)` cover the roundings of `Y` and of the final products.
-fn restriction_slack<F: ImplicitFn>(
-    f: &F,
-    (steps, degree): (u32, u32),
-    o: DVec3,
-    o_err: DVec3,
-    d: DVec3,
-    r: f64,
-) -> f64 {
-    let y = (o.abs() + o_err + d.abs() * r) * (1.0 + 2.0 * f64::EPSILON);
-    let eta = (0..3)
-        .filter(|&k| o_err[k] > 0.0)
-        .map(|k| o_err[k] / y[k])
-        .fold(0.0, f64::max);
-    let rel = gamma(steps as usize) + f64::from(degree) * eta * (1.0 + f64::EPSILON);
+/// So `slack(R) = slack_rel·G(Y)` ([`slack_rel`]); `o_abs` is `|o|·(1 + ε) ≥ |o| + o_err`, and
+/// the factors `(1 + 2ε)`, `(1 + 4ε)` cover the roundings of `Y` and of the product.
+fn restriction_slack<F: ImplicitFn>(f: &F, rel: f64, o_abs: DVec3, d_abs: DVec3, r: f64) -> f64 {
+    let y = (o_abs + d_abs * r) * (1.0 + 2.0 * f64::EPSILON);
     rel * f.restriction_abs(y) * (1.0 + 4.0 * f64::EPSILON)
 }
 
@@ -492,15 +500,12 @@ impl<F: ImplicitFn> Implicit<F> {
         let opts = self.roots.options(x_tol);
         if self.roots.isolation == IsolationMethod::Exact && self.degree >= 3 {
             // The reference: restricted and isolated exactly (no rounded polynomial at all).
-            let s = exact_smallest(&self.f, ray, t0, (lo, hi), x_tol)?;
+            let s = exact_smallest(&restrict_exact_at(&self.f, ray, t0), (lo, hi), x_tol)?;
             return Some((t0 + s, o + ray.dir * s));
         }
         self.f
             .restrict(o, ray.dir, &mut ws.restrict, &mut ws.coeffs);
-        // Certify against the surface as written (§6): degrees 1–2 keep their closed forms,
-        // whose restriction loses a few ulps (§2), and the heuristic methods certify nothing.
-        let certify = self.degree >= 3 && self.roots.isolation == IsolationMethod::Bernstein;
-        if !certify {
+        if !self.certifies() {
             let s = if centred {
                 smallest_root_split(ws, lo, hi, &opts, None)
                     .ok()
@@ -511,13 +516,8 @@ impl<F: ImplicitFn> Implicit<F> {
             return Some((t0 + s, o + ray.dir * s));
         }
         // `o` = fl(origin + dir·t0), one rounding: within u·|o| of the exact point.
-        let o_err = if t0 == 0.0 {
-            DVec3::ZERO
-        } else {
-            o.abs() * (UNIT_ROUNDOFF * (1.0 + 4.0 * f64::EPSILON))
-        };
-        let bound = (self.rounding_steps, self.degree);
-        let slack = |r: f64| restriction_slack(&self.f, bound, o, o_err, ray.dir, r);
+        let (o_abs, d_abs) = (o.abs() * (1.0 + f64::EPSILON), ray.dir.abs());
+        let slack = |r: f64| restriction_slack(&self.f, self.slack_rel, o_abs, d_abs, r);
         let (mut lo, mut hi) = (lo, hi);
         let mut answer = Err(RootError::SlackLimited { lo, hi });
         if !(lo.is_finite() && hi.is_finite()) {
@@ -538,16 +538,21 @@ impl<F: ImplicitFn> Implicit<F> {
             Err(RootError::SlackLimited { .. }) => {
                 // The rounded restriction cannot decide this ray: restrict it exactly.
                 ws.stats.surface_certification.exact_restrictions += 1;
+                let exact = restrict_exact_at(&self.f, ray, t0);
+                let (lo, hi) = (start - t0, seg.end - t0);
+                if let Some(s) = self.rounded_exact(ws, &exact, (lo, hi), &opts, centred) {
+                    return s.map(|s| (t0 + s, o + ray.dir * s));
+                }
                 if self.degree <= EXACT_RESTRICTION_MAX_DEGREE {
-                    exact_smallest(&self.f, ray, t0, (start - t0, seg.end - t0), x_tol)?
+                    ws.stats.surface_certification.exact_isolations += 1;
+                    exact_smallest(&exact, (lo, hi), x_tol)?
                 } else {
                     // Visible, never silent: counted, and answered for the rounded polynomial.
                     ws.stats.surface_certification.undecided_rays += 1;
-                    let (lo, hi) = (start - t0, seg.end - t0);
+                    self.f
+                        .restrict(o, ray.dir, &mut ws.restrict, &mut ws.coeffs);
                     if centred {
-                        smallest_root_split(ws, lo, hi, &opts, None)
-                            .ok()
-                            .flatten()?
+                        smallest_root_split(ws, lo, hi, &opts, None).ok().flatten()?
                     } else {
                         smallest_root_in(ws, lo, hi, &opts)?
                     }
@@ -557,28 +562,73 @@ impl<F: ImplicitFn> Implicit<F> {
         };
         Some((t0 + s, o + ray.dir * s))
     }
+
+    /// The second tier of a slack-limited ray: the exact restriction rounded to the nearest
+    /// `f64` coefficients, whose slack is only `2u·Σ|ĉₘ|Rᵐ` (plus an underflow term) — the
+    /// polynomial's own scale, not `F_abs`'s — certified by the same query. `None` when even
+    /// that slack decides nothing; otherwise the answer (`Some(None)`: no root).
+    fn rounded_exact(
+        &self,
+        ws: &mut Workspace,
+        exact: &QPoly,
+        (lo, hi): (f64, f64),
+        opts: &RootOptions,
+        centred: bool,
+    ) -> Option<Option<f64>> {
+        ws.coeffs.clear();
+        ws.coeffs
+            .extend(exact.coeffs().iter().map(poly::rat_to_f64));
+        if ws.coeffs.iter().any(|c| !c.is_finite()) {
+            return None;
+        }
+        let abs: Vec<f64> = ws.coeffs.iter().map(|c| c.abs()).collect();
+        let n = abs.len();
+        // Correct rounding errs by at most u·|ĉ| (and 2^-1074 in the subnormal range) per
+        // coefficient; Horner on non-negative numbers, inflated for its 2n roundings.
+        let slack = move |r: f64| {
+            let r = r * (1.0 + 2.0 * f64::EPSILON);
+            let (sum, powers) = abs
+                .iter()
+                .rev()
+                .fold((0.0, 0.0), |(s, z), &c| (s * r + c, z * r + 1.0));
+            (2.0 * UNIT_ROUNDOFF * sum + 5e-324 * powers) * (1.0 + 2.0 * gamma(2 * n + 2))
+        };
+        let (mut lo, mut hi) = (lo, hi);
+        if !(lo.is_finite() && hi.is_finite()) {
+            let t = true_root_radius(&ws.coeffs, &slack)?;
+            (lo, hi) = (lo.max(-t), hi.min(t));
+        }
+        let answer = if centred {
+            smallest_root_split(ws, lo, hi, opts, Some(&slack))
+        } else {
+            certified_smallest(ws, lo, hi, opts, Some(&slack))
+        };
+        match answer {
+            Ok(s) => Some(s),
+            Err(RootError::SlackLimited { .. }) => None,
+            Err(_) => Some(None),
+        }
+    }
 }
 
-/// The smallest root in `(lo, hi]` of the exact restriction of `f` to `ray` at `t0`, within
-/// `x_tol` (exact Sturm isolation, `poly`'s [`QPoly::smallest_root`]): the restriction point
-/// `origin + t0·dir` and the polynomial are exact rationals, so this is the answer for the
-/// surface as written along the `f64` ray. Infinite ends become the exact Cauchy bound.
-fn exact_smallest<F: ImplicitFn>(
-    f: &F,
-    ray: &Ray,
-    t0: f64,
-    (lo, hi): (f64, f64),
-    x_tol: f64,
-) -> Option<f64> {
+/// The exact restriction of `f` to `ray` at `t0`: the restriction point `origin + t0·dir` and
+/// the polynomial are exact rationals, so this is the surface as written along the `f64` ray.
+fn restrict_exact_at<F: ImplicitFn>(f: &F, ray: &Ray, t0: f64) -> QPoly {
     let rat = |x: f64| poly::rat_from_f64(x).expect("finite ray data");
     let t0r = rat(t0);
     let o: [Rat; 3] = std::array::from_fn(|k| rat(ray.origin[k]) + rat(ray.dir[k]) * &t0r);
     let d: [Rat; 3] = std::array::from_fn(|k| rat(ray.dir[k]));
-    let p = f.restrict_exact(&o, &d);
+    f.restrict_exact(&o, &d)
+}
+
+/// The smallest root in `(lo, hi]` of the exact polynomial `p`, within `x_tol` (exact Sturm
+/// isolation, `poly`'s [`QPoly::smallest_root`]). Infinite ends become the exact Cauchy
+/// bound; `None` also when `p` vanishes (the ray lies in the surface).
+fn exact_smallest(p: &QPoly, (lo, hi): (f64, f64), x_tol: f64) -> Option<f64> {
     if p.is_zero() {
-        // The ray lies in the surface.
         return None;
     }
+    let rat = |x: f64| poly::rat_from_f64(x).expect("finite range");
     let bound = p
         .cauchy_bound()
         .unwrap_or_else(|| Rat::from_integer(1.into()));
@@ -612,14 +662,25 @@ impl<F: ImplicitFn> Surface for Implicit<F> {
 
     fn shading(&self, hit: &Hit) -> SurfaceGeometry {
         let p = hit.local;
-        let (normal, p_err) =
-            gradient_normal(self.f.eval_grad(p), self.degree).unwrap_or_else(|| {
+        let e = self.f.eval_grad(p);
+        let (normal, p_err) = match gradient_normal(e, self.degree) {
+            // A ray spawned here is restricted at its origin, where the certified query needs
+            // the sign of the true polynomial beyond the restriction's slack `γ(K)·G(|o|)`
+            // (§6): move the origin twice that far in value past the surface, or every shadow
+            // ray would start undecided.
+            Some((n, err)) if self.certifies() => {
+                let slack = gamma(self.rounding_steps as usize) * self.f.restriction_abs(p.abs());
+                (n, err + DVec3::splat(2.0 * slack / e.grad.length()))
+            }
+            Some(found) => found,
+            None => {
                 let size = self
                     .bounds
                     .map_or(0.0, |b| b.diagonal())
                     .max(p.abs().max_element());
                 (None, DVec3::splat(SINGULAR_P_ERR_REL * size))
-            });
+            }
+        };
         SurfaceGeometry {
             p,
             p_err,
