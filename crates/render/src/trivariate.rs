@@ -538,8 +538,8 @@ impl Poly3 {
                 *c += (a * pc) << shift as usize;
             }
         }
-        let den = BigInt::one() << (f_max as u64 + e_max * total as u64) as usize;
-        QPoly::new(acc.into_iter().map(|c| Rat::new(c, den.clone())).collect())
+        let scale = -(f_max + (e_max * total as u64) as i64);
+        QPoly::new(acc.into_iter().map(|c| dyadic(c, scale)).collect())
     }
 
     /// [`Poly3::restrict_exact`] step by step in rationals (for non-dyadic `o`, `d`).
@@ -581,6 +581,30 @@ fn int_mul(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
         }
     }
     out
+}
+
+/// `m·2^e` as a normalised rational: a power-of-two denominator shares only factors of 2
+/// with `m`, so dropping the common trailing zeros normalises it without a gcd (which cost
+/// more than the whole restriction, `num-rational`'s `Ratio::new` on 300-bit numbers).
+fn dyadic(m: BigInt, e: i64) -> Rat {
+    if e >= 0 || m.is_zero() {
+        return Rat::from_integer(m << e.max(0) as usize);
+    }
+    let tz = m.trailing_zeros().unwrap_or(0).min(e.unsigned_abs());
+    let k = e.unsigned_abs() - tz;
+    Rat::new_raw(m >> tz as usize, BigInt::one() << k as usize)
+}
+
+/// `origin + dir·t`, exactly, as a rational (the restriction point of a ray, finite input).
+pub(crate) fn exact_point(origin: f64, dir: f64, t: f64) -> Rat {
+    let ((mo, eo), (md, ed), (mt, et)) = (
+        f64_mantissa_exp(origin),
+        f64_mantissa_exp(dir),
+        f64_mantissa_exp(t),
+    );
+    let (mp, ep) = (md * mt, ed + et);
+    let e = eo.min(ep);
+    dyadic((mo << (eo - e) as usize) + (mp << (ep - e) as usize), e)
 }
 
 /// `x = m·2^e` exactly, `m` an integer (finite `x`).
@@ -821,7 +845,18 @@ mod tests {
         let rat = |v: DVec3| [v.x, v.y, v.z].map(|x| poly::rat_from_f64(x).unwrap());
         let (or, dr) = (rat(o), rat(d));
         let fast = f.restrict_exact(&or, &dr);
-        assert_eq!(fast, f.restrict_rational(&or, &dr), "dyadic integers = rationals");
+        assert_eq!(
+            fast,
+            f.restrict_rational(&or, &dr),
+            "dyadic integers = rationals"
+        );
+        let (a, b, t) = (0.1, -3.7e-5, 1.0 / 3.0);
+        let r = |x: f64| poly::rat_from_f64(x).unwrap();
+        assert_eq!(
+            exact_point(a, b, t),
+            r(a) + r(b) * r(t),
+            "origin + dir·t exactly"
+        );
         // The rounded restriction is within γ(K)·F_abs(|o| + t|d|) of it (Σ over t = 1).
         let rounded = f.restrict_to_line(o, d);
         let k = f.restriction_rounding_steps() as usize;
@@ -832,7 +867,10 @@ mod tests {
             .zip(rounded.coeffs())
             .map(|(a, b)| (poly::rat_to_f64(a) - b).abs())
             .sum();
-        assert!(diff <= bound, "Σ|Δc| = {diff:e} within γ(K)·F_abs = {bound:e}");
+        assert!(
+            diff <= bound,
+            "Σ|Δc| = {diff:e} within γ(K)·F_abs = {bound:e}"
+        );
     }
 
     #[test]

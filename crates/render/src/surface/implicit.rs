@@ -12,7 +12,7 @@ use crate::methods::RootMethods;
 
 use super::{Hit, Surface, SurfaceGeometry, SurfaceKind};
 use crate::geometry::{Bounds3, Ray, gamma};
-use crate::trivariate::{Eval3, Poly3, RestrictScratch};
+use crate::trivariate::{Eval3, Poly3, RestrictScratch, exact_point};
 use crate::workspace::Workspace;
 
 /// Root tolerance relative to the extent of the search: a nearest-hit query asks `poly` for
@@ -552,7 +552,9 @@ impl<F: ImplicitFn> Implicit<F> {
                     self.f
                         .restrict(o, ray.dir, &mut ws.restrict, &mut ws.coeffs);
                     if centred {
-                        smallest_root_split(ws, lo, hi, &opts, None).ok().flatten()?
+                        smallest_root_split(ws, lo, hi, &opts, None)
+                            .ok()
+                            .flatten()?
                     } else {
                         smallest_root_in(ws, lo, hi, &opts)?
                     }
@@ -614,10 +616,8 @@ impl<F: ImplicitFn> Implicit<F> {
 /// The exact restriction of `f` to `ray` at `t0`: the restriction point `origin + t0·dir` and
 /// the polynomial are exact rationals, so this is the surface as written along the `f64` ray.
 fn restrict_exact_at<F: ImplicitFn>(f: &F, ray: &Ray, t0: f64) -> QPoly {
-    let rat = |x: f64| poly::rat_from_f64(x).expect("finite ray data");
-    let t0r = rat(t0);
-    let o: [Rat; 3] = std::array::from_fn(|k| rat(ray.origin[k]) + rat(ray.dir[k]) * &t0r);
-    let d: [Rat; 3] = std::array::from_fn(|k| rat(ray.dir[k]));
+    let o: [Rat; 3] = std::array::from_fn(|k| exact_point(ray.origin[k], ray.dir[k], t0));
+    let d: [Rat; 3] = std::array::from_fn(|k| exact_point(0.0, ray.dir[k], 1.0));
     f.restrict_exact(&o, &d)
 }
 
