@@ -75,15 +75,14 @@ pub struct TraceStats {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct CertificationStats {
     /// Rays restricted again in exact rational arithmetic (then rounded to `f64` with a
-    /// slack of the polynomial's own scale, which decides most), up to
-    /// [`EXACT_RESTRICTION_MAX_DEGREE`](crate::surface::EXACT_RESTRICTION_MAX_DEGREE).
+    /// slack of the polynomial's own scale, which decides most), up to the degree
+    /// `EXACT_RESTRICTION_MAX_DEGREE` of the implicit-surface module.
     pub exact_restrictions: u64,
     /// Of those, rays whose rounded exact restriction still decided nothing, isolated with
     /// exact Sturm sequences.
     pub exact_isolations: u64,
-    /// Slack-limited rays above
-    /// [`EXACT_RESTRICTION_MAX_DEGREE`](crate::surface::EXACT_RESTRICTION_MAX_DEGREE), answered
-    /// for the rounded restriction: the pixel may be wrong, and this says how many.
+    /// Slack-limited rays above that degree, answered for the rounded restriction: the pixel
+    /// may be wrong, and this says how many.
     pub undecided_rays: u64,
 }
 
@@ -426,8 +425,7 @@ impl fmt::Display for StatsReport<'_> {
         )?;
         writeln!(
             f,
-            "    undecided rays (degree > {:>2})    {:>12}",
-            crate::surface::EXACT_RESTRICTION_MAX_DEGREE,
+            "    undecided rays (high degree)     {:>12}",
             c.undecided_rays
         )?;
         writeln!(
