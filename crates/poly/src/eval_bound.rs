@@ -184,7 +184,7 @@ pub(crate) fn certified_value_pair(
     let ((vx, ex), (vy, ey)) = horner_bounded_pair(c, x, y);
     let second_tier = |at: f64, v: f64, err: f64| match sign_if_certain(v, err + slack) {
         // Within the slack no tier can decide.
-        0 if v.abs() <= slack => (v, 0),
+        0 if slack > 0.0 && v.abs() <= slack => (v, 0),
         0 => {
             let (v, err) = comp_horner_bounded(c, at);
             (v, sign_if_certain(v, err + slack))
@@ -201,7 +201,7 @@ pub(crate) fn certified_value(c: &[f64], x: f64, slack: f64) -> (f64, i8) {
     let (v, err) = horner_bounded(c, x);
     match sign_if_certain(v, err + slack) {
         // Within the slack no tier can decide.
-        0 if v.abs() <= slack => (v, 0),
+        0 if slack > 0.0 && v.abs() <= slack => (v, 0),
         0 => {
             let (v, err) = comp_horner_bounded(c, x);
             (v, sign_if_certain(v, err + slack))

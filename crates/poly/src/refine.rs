@@ -303,7 +303,7 @@ fn sign_with(c: &[f64], x: f64, fx: f64, err: f64, slack: f64) -> (f64, i8) {
         (fx, 1)
     } else if -fx > err {
         (fx, -1)
-    } else if fx.abs() <= slack {
+    } else if slack > 0.0 && fx.abs() <= slack {
         // Within the slack: no sharper rounding bound can decide.
         (fx, 0)
     } else {
