@@ -180,6 +180,10 @@ pub(crate) struct BernsteinIsolator<'p, S> {
     underflow_unit: f64,
     /// `M`, a bound on the absolute-value weight of every coefficient of every node.
     mag: f64,
+    /// The caller's bound on every Bernstein coefficient, and every value, of the difference
+    /// between the true polynomial and the stored one on this run's interval (0 for the
+    /// stored polynomial; see [`Slack`](crate::query::Slack)). Added to every error bound.
+    slack: f64,
     top: Node<S>,
 }
 
@@ -188,7 +192,18 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
     /// first, finite, degree ≥ 1, last one non-zero). The caller has certified the signs
     /// `s_min` of `p(t_min)` and `s_max` of `p(t_max)` (both non-zero) and checked
     /// `t_min < t_max`, both finite. `None` when the map to `[0, 1]` overflows.
-    pub(crate) fn new(p: &'p [f64], t_min: f64, t_max: f64, s_min: i8, s_max: i8) -> Option<Self> {
+    ///
+    /// `slack` bounds `Σ|Δcₖ|Rᵏ` for the difference `Δ` between the true and the stored
+    /// coefficients and `R = max(|t_min|, |a + w|)`: then every Bernstein coefficient of `Δ`
+    /// on every node is at most `slack` (they are blossom values, each a convex combination of
+    /// products of numbers of modulus at most `R`), and so is `|Δ(t)|` at every point.
+    pub(crate) fn new(
+        p: &'p [f64],
+        t_min: f64,
+        t_max: f64,
+        (s_min, s_max): (i8, i8),
+        slack: f64,
+    ) -> Option<Self> {
         let n = S::EXACT_LEN.map_or(p.len() - 1, |len| len - 1);
         debug_assert_eq!(n + 1, p.len(), "storage matches the degree");
         let (w, w_exact) = diff_rounded_up(t_max, t_min);
@@ -264,6 +279,7 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
             s_max,
             underflow_unit,
             mag,
+            slack,
             // (t_max − a)/w rounded up: two roundings, each within a relative u.
             u_beyond: if w_exact {
                 1.0
@@ -300,6 +316,7 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         // The factor (1 + 8ε) covers the roundings of this bound itself.
         gamma_ratio_upper(node.ops as usize) * self.mag * (1.0 + 8.0 * f64::EPSILON)
             + self.tiny(node.depth)
+            + self.slack
     }
 
     /// Certified signs of the node's coefficients (0 = not certain). The end coefficients of
@@ -423,19 +440,19 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         let check_hi = hi <= self.t_max && !(node.u1 == 1.0 && self.w_exact);
         if check_lo && check_hi {
             // An interior node: both end signs, in one interleaved evaluation.
-            let ((fl, sl), (fh, sh)) = certified_value_pair(self.p, lo, hi);
+            let ((fl, sl), (fh, sh)) = certified_value_pair(self.p, lo, hi, self.slack);
             if sl != s_lo || sh != -s_lo {
                 return Err(());
             }
             (f_lo, f_hi) = (fl, fh);
         } else if check_lo {
-            let (f, s) = certified_value(self.p, lo);
+            let (f, s) = certified_value(self.p, lo, self.slack);
             if s != s_lo {
                 return Err(());
             }
             f_lo = f;
         } else if check_hi {
-            let (f, s) = certified_value(self.p, hi);
+            let (f, s) = certified_value(self.p, hi, self.slack);
             if s != -s_lo {
                 return Err(());
             }
@@ -570,7 +587,7 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         if node.u0 > 0.0 {
             let x = w_u_a(self.w, node.u0, self.a).next_down();
             if x > floor && x < self.t_max {
-                let s = certified_sign(self.p, x);
+                let s = certified_sign(self.p, x, self.slack);
                 if s != 0 {
                     (t_a, s_a) = (x, s);
                 }
@@ -585,7 +602,7 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
                 if x.is_nan() || x >= self.t_max {
                     break;
                 }
-                let s = certified_sign(self.p, x);
+                let s = certified_sign(self.p, x, self.slack);
                 if s != 0 && x > t_a {
                     (t_b, s_b) = (x, s);
                     break;
@@ -607,11 +624,17 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
 /// bounds), a fixed 25-entry array up to degree 24 (no heap allocation), `Vec` above. The
 /// caller has certified the non-zero signs `s_min` of `p(t_min)` and `s_max` of `p(t_max)`;
 /// `splits` counts the subdivisions of the whole query (see [`MAX_SPLITS`]).
-/// When the map to `[0, 1]` overflows, the whole interval is reported stuck.
+/// When the map to `[0, 1]` overflows, the whole interval is reported stuck. `slack` is the
+/// run's value slack (see [`BernsteinIsolator::new`]; 0 for the stored polynomial).
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the run's inputs and its three outputs; a struct would only rename them"
+)]
 pub(crate) fn run(
     p: &[f64],
     (t_min, t_max): (f64, f64),
     (s_min, s_max): (i8, i8),
+    slack: f64,
     first_only: bool,
     out: &mut Brackets,
     splits: &mut u32,
@@ -619,13 +642,13 @@ pub(crate) fn run(
 ) -> Result<(), Stuck> {
     fn go<S: Coeffs>(
         p: &[f64],
-        (t_min, t_max, s_min, s_max): (f64, f64, i8, i8),
+        (t_min, t_max, s_min, s_max, slack): (f64, f64, i8, i8, f64),
         first_only: bool,
         out: &mut Brackets,
         splits: &mut u32,
         stats: &mut RootStats,
     ) -> Result<(), Stuck> {
-        match BernsteinIsolator::<S>::new(p, t_min, t_max, s_min, s_max) {
+        match BernsteinIsolator::<S>::new(p, t_min, t_max, (s_min, s_max), slack) {
             Some(iso) => iso.run(first_only, out, splits, stats),
             None => Err(Stuck {
                 t_a: t_min,
@@ -636,7 +659,7 @@ pub(crate) fn run(
             }),
         }
     }
-    let args = (t_min, t_max, s_min, s_max);
+    let args = (t_min, t_max, s_min, s_max, slack);
     match p.len() {
         2 => go::<[f64; 2]>(p, args, first_only, out, splits, stats),
         3 => go::<[f64; 3]>(p, args, first_only, out, splits, stats),
@@ -792,7 +815,8 @@ mod tests {
 
     /// `max_rel`: the bound must stay below `max_rel·M` (not vacuous).
     fn check_node_bounds<const N: usize>(p: &Poly<f64>, t_min: f64, t_max: f64, max_rel: f64) {
-        let iso = BernsteinIsolator::<[f64; N]>::new(p.coeffs(), t_min, t_max, 1, 1).unwrap();
+        let iso =
+            BernsteinIsolator::<[f64; N]>::new(p.coeffs(), t_min, t_max, (1, 1), 0.0).unwrap();
         let (a, w) = (
             Rat::from_float(iso.a).unwrap(),
             Rat::from_float(iso.w).unwrap(),

@@ -27,6 +27,7 @@ use crate::bernstein::{self, Bracket, Brackets, Stuck};
 use crate::eval_bound::{certified_sign, certified_sign_pair};
 use crate::exact_oracle::ExactOracle;
 use crate::multiprec::{Outcome, PieceIsolator, Tier, point_sign};
+use crate::query::Slack;
 use crate::root_interval::RootInterval;
 use crate::stats::RootStats;
 use crate::univariate::Poly;
@@ -34,6 +35,12 @@ use crate::univariate::Poly;
 /// Most Bernstein runs in one query (the first included) before the remaining pieces go
 /// straight to exact isolation. Each run costs one Taylor shift, `O(n²)` flops.
 const MAX_RUNS: u32 = 16;
+
+/// [`MAX_RUNS`] for a query with a value slack, which cannot escalate to higher precision:
+/// each stuck run is replaced by runs on narrower pieces, whose slack (taken at their own
+/// radius) is smaller; a degree-32 ray whose range reaches twice the root's radius needs about
+/// twenty (`paper-notes/implicit-surfaces.md` §6).
+const MAX_SLACK_RUNS: u32 = 48;
 
 /// A run on a piece where its parent was stuck may itself go on with further runs only if
 /// its magnitude bound `M` is at most this fraction of the parent's; otherwise its error
@@ -74,6 +81,16 @@ pub(crate) struct CertifiedSearch<'p> {
     splits: u32,
     /// The exact oracle of the stored polynomial, built on first need.
     exact: Option<ExactOracle>,
+    /// The caller's value slack (none: the stored polynomial is the true one).
+    slack: Slack<'p>,
+    /// The slack at the radius of the query's range, `(radius, slack)`: asked once, and valid
+    /// on every piece (a slack is non-decreasing in the radius).
+    pub(crate) top_slack: (f64, f64),
+    /// With a slack, the piece where `f64` could not decide and the search stopped: more
+    /// precision of the stored coefficients cannot help there ([`RootError::SlackLimited`]).
+    ///
+    /// [`RootError::SlackLimited`]: crate::RootError::SlackLimited
+    pub(crate) slack_limited: Option<(f64, f64)>,
     /// The roots found, sorted.
     pub(crate) found: SmallVec<[Found; 2]>,
 }
@@ -86,10 +103,12 @@ impl<'p> CertifiedSearch<'p> {
         lo: f64,
         hi: f64,
         first_only: bool,
+        slack: Slack<'p>,
         stats: &mut RootStats,
     ) -> Self {
-        let signs = certified_sign_pair(p.coeffs(), lo, hi);
-        Self::run_with_signs(p, (lo, hi), signs, first_only, stats)
+        let range_slack = slack.at(lo.abs().max(hi.abs()));
+        let signs = end_signs(p.coeffs(), lo, hi, slack, range_slack);
+        Self::run_with_signs(p, (lo, hi), signs, first_only, (slack, range_slack), stats)
     }
 
     /// As [`run`](Self::run), with the caller's [`certified_sign`]s of `p(lo)`, `p(hi)` (0
@@ -99,19 +118,36 @@ impl<'p> CertifiedSearch<'p> {
         (lo, hi): (f64, f64),
         signs: (i8, i8),
         first_only: bool,
+        (slack, range_slack): (Slack<'p>, f64),
         stats: &mut RootStats,
     ) -> Self {
         let mut search = CertifiedSearch {
             p,
             first_only,
-            runs_left: MAX_RUNS,
+            runs_left: if slack.is_some() {
+                MAX_SLACK_RUNS
+            } else {
+                MAX_RUNS
+            },
             went_adaptive: false,
             splits: 0,
             exact: None,
+            slack,
+            top_slack: (lo.abs().max(hi.abs()), range_slack),
+            slack_limited: None,
             found: SmallVec::new(),
         };
         search.start(lo, hi, signs, stats);
         search
+    }
+
+    /// The slack at radius `r` (the query's own without asking again).
+    fn slack_at(&self, r: f64) -> f64 {
+        if r == self.top_slack.0 {
+            self.top_slack.1
+        } else {
+            self.slack.at(r)
+        }
     }
 
     /// The exact oracle, when some piece needed it.
@@ -123,6 +159,11 @@ impl<'p> CertifiedSearch<'p> {
     /// no precision up to [`MAX_BITS`](crate::multiprec::MAX_BITS) decides (a root at the
     /// end, or within `2^-1000` of the scale of it) gets a short exact piece next to it.
     fn start(&mut self, lo: f64, hi: f64, (s_lo, s_hi): (i8, i8), stats: &mut RootStats) {
+        if self.slack.is_some() && (s_lo == 0 || s_hi == 0) {
+            // An end within the slack of zero: no precision of the stored polynomial helps.
+            self.slack_limited = Some((lo, hi));
+            return;
+        }
         let c = self.p.coeffs();
         let s_lo = if s_lo == 0 {
             point_sign(c, lo, Tier::Dd).0
@@ -183,6 +224,7 @@ impl<'p> CertifiedSearch<'p> {
             self.p.coeffs(),
             (lo, hi),
             s,
+            self.slack_at(lo.abs().max(hi.abs())),
             self.first_only,
             &mut out,
             &mut self.splits,
@@ -206,14 +248,17 @@ impl<'p> CertifiedSearch<'p> {
         } = stuck;
         // A run no tighter than its parent cannot do better than the parent did, so its
         // stuck piece goes to adaptive precision rather than to yet another `f64` run.
-        let no_gain = mag > MIN_MAG_GAIN * parent_mag;
+        // With a value slack a narrower piece always gains: the slack is taken at the piece's
+        // own radius, and it is what usually leaves a sign undecided (the runs left bound it).
+        let no_gain = !self.slack.is_some() && mag > MIN_MAG_GAIN * parent_mag;
         if t_a == lo && t_b == hi {
             // Stuck on the whole interval: split it at a non-dyadic point and try fresh runs
             // on the parts.
             if no_gain {
                 return self.adaptive(lo, hi, s, stats);
             }
-            let Some((m, s_m)) = split_point(self.p.coeffs(), lo, hi) else {
+            let slack = self.slack_at(lo.abs().max(hi.abs()));
+            let Some((m, s_m)) = split_point(self.p.coeffs(), lo, hi, slack) else {
                 return self.adaptive(lo, hi, s, stats);
             };
             return self.range(lo, m, (s.0, s_m), mag, stats)
@@ -232,7 +277,12 @@ impl<'p> CertifiedSearch<'p> {
     /// Adaptive-precision isolation of `(lo, hi]` (finite ends, certified non-zero signs `s`):
     /// double-double, then arbitrary precision ([`PieceIsolator`]); what even that cannot
     /// decide is isolated exactly. True when the search is over.
+    /// With a slack, the search stops here instead ([`Self::slack_limited`]).
     fn adaptive(&mut self, lo: f64, hi: f64, s: (i8, i8), stats: &mut RootStats) -> bool {
+        if self.slack.is_some() {
+            self.slack_limited = Some((lo, hi));
+            return true;
+        }
         self.went_adaptive = true;
         let mut piece = PieceIsolator::new(self.p.coeffs(), (lo, hi), s, stats);
         while let Some(outcome) = piece.next(stats) {
@@ -251,8 +301,12 @@ impl<'p> CertifiedSearch<'p> {
     }
 
     /// Exact isolation of `(lo, hi]` (finite `f64` ends, [`ExactOracle`]); true when the
-    /// search is over.
+    /// search is over. With a slack, the search stops here instead ([`Self::slack_limited`]).
     fn exact(&mut self, lo: f64, hi: f64, stats: &mut RootStats) -> bool {
+        if self.slack.is_some() {
+            self.slack_limited = Some((lo, hi));
+            return true;
+        }
         let p = self.p;
         let oracle = self.exact.get_or_insert_with(|| {
             stats.exact_fallbacks += 1;
@@ -263,6 +317,30 @@ impl<'p> CertifiedSearch<'p> {
         self.found.extend(ivs.into_iter().map(Found::Exact));
         self.first_only && any
     }
+}
+
+/// The certified signs of `p(lo)` and `p(hi)` (0 where not certain) with `range_slack`, the
+/// slack at `max(|lo|, |hi|)`; an end it leaves undecided is tried again with the slack at its
+/// own radius (a value at `x` needs only `slack(|x|)`, which near the expansion point of a
+/// high-degree restriction is far below the slack at the range's far end).
+#[inline]
+pub(crate) fn end_signs(
+    c: &[f64],
+    lo: f64,
+    hi: f64,
+    slack: Slack<'_>,
+    range_slack: f64,
+) -> (i8, i8) {
+    let (mut s_lo, mut s_hi) = certified_sign_pair(c, lo, hi, range_slack);
+    if slack.is_some() {
+        if s_lo == 0 && lo.abs() < hi.abs() {
+            s_lo = certified_sign(c, lo, slack.at(lo));
+        }
+        if s_hi == 0 && hi.abs() < lo.abs() {
+            s_hi = certified_sign(c, hi, slack.at(hi));
+        }
+    }
+    (s_lo, s_hi)
 }
 
 /// A point strictly inside `(lo, hi)` with a certified sign (adaptive precision), near `end`
@@ -281,12 +359,13 @@ fn near_end(c: &[f64], lo: f64, hi: f64, end: f64, dir: f64) -> Option<(f64, i8)
     })
 }
 
-/// A point strictly inside `(lo, hi)` at one of [`SPLIT_FRACTIONS`] with a certified sign.
-fn split_point(c: &[f64], lo: f64, hi: f64) -> Option<(f64, i8)> {
+/// A point strictly inside `(lo, hi)` at one of [`SPLIT_FRACTIONS`] with a certified sign
+/// (with the value slack `slack` valid on the interval).
+fn split_point(c: &[f64], lo: f64, hi: f64, slack: f64) -> Option<(f64, i8)> {
     SPLIT_FRACTIONS.into_iter().find_map(|f| {
         let m = lo + (hi - lo) * f;
         let s = if m > lo && m < hi {
-            certified_sign(c, m)
+            certified_sign(c, m, slack)
         } else {
             0
         };
@@ -381,7 +460,7 @@ mod tests {
             stats.adaptive_pieces >= 2,
             "real_roots and smallest_root each took the adaptive path: {stats:?}"
         );
-        let search = CertifiedSearch::run(&p, 0.0, 1.0, false, &mut stats);
+        let search = CertifiedSearch::run(&p, 0.0, 1.0, false, Slack::NONE, &mut stats);
         assert!(search.exact_sequence().is_none(), "no exact sequence built");
     }
 }

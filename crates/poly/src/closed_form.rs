@@ -131,7 +131,7 @@ pub(crate) fn quadratic_smallest(
         } else {
             (-s_out, s_out)
         };
-        if certified_sign(c, lo) != want_lo || certified_sign(c, hi) != want_hi {
+        if certified_sign(c, lo, 0.0) != want_lo || certified_sign(c, hi, 0.0) != want_hi {
             return None;
         }
         // Now the root is certainly in (lo, hi), and (for the larger root) the smaller one

@@ -153,36 +153,41 @@ fn sign_if_certain(v: f64, err: f64) -> i8 {
 }
 
 /// The certified sign of `p(x)` (−1 or 1), or 0 when neither tier can certify it (then
-/// `p(x)` is zero or within about `2^-100` of zero relative to `Σ|cᵢ||x|^i`).
+/// `p(x)` is zero or within about `2^-100` of zero relative to `Σ|cᵢ||x|^i`, or within
+/// `slack` of zero).
+///
+/// `slack` widens every error bound by a caller's bound on `|p_true(x) − p(x)|` (0 for the
+/// stored polynomial itself; see [`Slack`](crate::query::Slack)): a sign certified with it is
+/// the sign of every polynomial within `slack` of the stored one at `x`.
 #[inline]
-pub(crate) fn certified_sign(c: &[f64], x: f64) -> i8 {
-    let (v, err) = horner_bounded(c, x);
-    match sign_if_certain(v, err) {
-        0 => {
-            let (v, err) = comp_horner_bounded(c, x);
-            sign_if_certain(v, err)
-        }
-        s => s,
-    }
+pub(crate) fn certified_sign(c: &[f64], x: f64, slack: f64) -> i8 {
+    certified_value(c, x, slack).1
 }
 
 /// [`certified_sign`] at `x` and at `y`, the first tier for both points in one interleaved
 /// pass ([`horner_bounded_pair`]).
 #[inline]
-pub(crate) fn certified_sign_pair(c: &[f64], x: f64, y: f64) -> (i8, i8) {
-    let ((_, sx), (_, sy)) = certified_value_pair(c, x, y);
+pub(crate) fn certified_sign_pair(c: &[f64], x: f64, y: f64, slack: f64) -> (i8, i8) {
+    let ((_, sx), (_, sy)) = certified_value_pair(c, x, y, slack);
     (sx, sy)
 }
 
 /// [`certified_value`] at `x` and at `y`, the first tier for both points in one interleaved
 /// pass ([`horner_bounded_pair`]).
 #[inline]
-pub(crate) fn certified_value_pair(c: &[f64], x: f64, y: f64) -> ((f64, i8), (f64, i8)) {
+pub(crate) fn certified_value_pair(
+    c: &[f64],
+    x: f64,
+    y: f64,
+    slack: f64,
+) -> ((f64, i8), (f64, i8)) {
     let ((vx, ex), (vy, ey)) = horner_bounded_pair(c, x, y);
-    let second_tier = |at: f64, v: f64, err: f64| match sign_if_certain(v, err) {
+    let second_tier = |at: f64, v: f64, err: f64| match sign_if_certain(v, err + slack) {
+        // Within the slack no tier can decide.
+        0 if slack > 0.0 && v.abs() <= slack => (v, 0),
         0 => {
             let (v, err) = comp_horner_bounded(c, at);
-            (v, sign_if_certain(v, err))
+            (v, sign_if_certain(v, err + slack))
         }
         s => (v, s),
     };
@@ -192,12 +197,14 @@ pub(crate) fn certified_value_pair(c: &[f64], x: f64, y: f64) -> ((f64, i8), (f6
 /// As [`certified_sign`], also returning the computed value `p(x)` (from the tier that
 /// decided, or the compensated value when neither did).
 #[inline]
-pub(crate) fn certified_value(c: &[f64], x: f64) -> (f64, i8) {
+pub(crate) fn certified_value(c: &[f64], x: f64, slack: f64) -> (f64, i8) {
     let (v, err) = horner_bounded(c, x);
-    match sign_if_certain(v, err) {
+    match sign_if_certain(v, err + slack) {
+        // Within the slack no tier can decide.
+        0 if slack > 0.0 && v.abs() <= slack => (v, 0),
         0 => {
             let (v, err) = comp_horner_bounded(c, x);
-            (v, sign_if_certain(v, err))
+            (v, sign_if_certain(v, err + slack))
         }
         s => (v, s),
     }
@@ -276,9 +283,9 @@ mod tests {
         );
         let (v, err) = comp_horner_bounded(p.coeffs(), x);
         assert!(v.abs() > err, "compensated: {v:e} ± {err:e}");
-        assert_eq!(certified_sign(p.coeffs(), x), 1, "certified positive");
+        assert_eq!(certified_sign(p.coeffs(), x, 0.0), 1, "certified positive");
         assert_eq!(
-            certified_sign(p.coeffs(), 1.0),
+            certified_sign(p.coeffs(), 1.0, 0.0),
             0,
             "an exact root is never signed"
         );

@@ -15,13 +15,13 @@
 use std::cell::Cell;
 
 use crate::bernstein::Bracket;
-use crate::certified::{CertifiedSearch, Found};
+use crate::certified::{CertifiedSearch, Found, end_signs};
 use crate::closed_form::{linear_smallest, quadratic_smallest};
-use crate::eval_bound::{certified_sign, certified_sign_pair};
+use crate::eval_bound::certified_sign;
 use crate::exact_oracle::{ExactOracle, SquareFreeSign};
 use crate::multiprec::refine_wide;
-use crate::query::with_scratch_poly;
-use crate::refine::{Refined, bisect_rational_to_f64, refine_bracket, refine_exact_f64};
+use crate::query::{Slack, with_scratch_poly};
+use crate::refine::{Refined, bisect_rational_to_f64, half_tol, refine_bracket, refine_exact_f64};
 use crate::root_error::RootError;
 use crate::root_interval::RootInterval;
 use crate::root_options::{IsolationMethod, RefineMethod, RootOptions, Tolerance};
@@ -121,8 +121,9 @@ fn around_zero<V>(
 /// to a point (the teapot's lid apex and bottom): measured on the teapot corpus, every exact
 /// fallback was such a factor (`paper-notes/isolation.md`). Dividing by `x^k` is exact, so
 /// the answer stays that of the stored polynomial.
-fn zero_root_order(p: &Poly<f64>, opts: &RootOptions) -> usize {
-    if opts.isolation != IsolationMethod::Bernstein {
+fn zero_root_order(p: &Poly<f64>, opts: &RootOptions, slack: Slack<'_>) -> usize {
+    // With a value slack the stored zeros are not the true polynomial's.
+    if opts.isolation != IsolationMethod::Bernstein || slack.is_some() {
         return 0;
     }
     let k = p.coeffs().iter().take_while(|c| **c == 0.0).count();
@@ -177,6 +178,7 @@ fn zero_root_split(
     a: f64,
     b: f64,
     opts: &RootOptions,
+    slack: Slack<'_>,
 ) -> Result<Option<(usize, f64, f64)>, RootError> {
     if p.coeffs().first() != Some(&0.0) {
         // The common case, without validating twice (the caller's path validates).
@@ -185,7 +187,7 @@ fn zero_root_split(
     let Range::Search { lo, hi } = prepare(p, a, b, opts)? else {
         return Ok(None);
     };
-    let k = zero_root_order(p, opts);
+    let k = zero_root_order(p, opts, slack);
     Ok((k > 0).then_some((k, lo, hi)))
 }
 
@@ -267,8 +269,21 @@ impl Poly<f64> {
         opts: &RootOptions,
         stats: &mut RootStats,
     ) -> Result<Option<f64>, RootError> {
+        self.try_smallest_root_slack(t_min, t_max, opts, Slack::NONE, stats)
+    }
+
+    /// [`try_smallest_root`](Poly::try_smallest_root) for every polynomial within `slack`
+    /// of the stored one ([`RootQuery::value_slack`](crate::RootQuery::value_slack)).
+    pub(crate) fn try_smallest_root_slack(
+        &self,
+        t_min: f64,
+        t_max: f64,
+        opts: &RootOptions,
+        slack: Slack<'_>,
+        stats: &mut RootStats,
+    ) -> Result<Option<f64>, RootError> {
         stats.count_query(self.degree());
-        let result = self.smallest_root_inner(t_min, t_max, opts, stats);
+        let result = self.smallest_root_inner(t_min, t_max, opts, slack, stats);
         match &result {
             Err(e) => stats.count_error(e),
             Ok(Some(_)) => stats.with_root += 1,
@@ -282,11 +297,21 @@ impl Poly<f64> {
         t_min: f64,
         t_max: f64,
         opts: &RootOptions,
+        slack: Slack<'_>,
         stats: &mut RootStats,
     ) -> Result<Option<f64>, RootError> {
-        // Evaluated only for degrees 1 and 2 (every torus and Barth query passes here).
-        let closed_form =
-            |opts: &RootOptions| opts.closed_form && opts.isolation == IsolationMethod::Bernstein;
+        if slack.is_some() && !slack_applies(t_min, t_max, opts) {
+            validate(self, t_min, t_max, opts)?;
+            return Err(RootError::SlackLimited {
+                lo: t_min,
+                hi: t_max,
+            });
+        }
+        // Evaluated only for degrees 1 and 2 (every torus and Barth query passes here). With
+        // a slack the closed forms do not apply (they certify against the stored polynomial).
+        let closed_form = |opts: &RootOptions| {
+            !slack.is_some() && opts.closed_form && opts.isolation == IsolationMethod::Bernstein
+        };
         let degree = self.degree();
         if degree == 2 && closed_form(opts) {
             // The quadratic closed form first, on the range as it is (it takes infinite ends
@@ -319,19 +344,20 @@ impl Poly<f64> {
                 Range::Search { lo, hi } => (lo, hi),
             }
         };
-        let k = zero_root_order(self, opts);
+        let k = zero_root_order(self, opts, slack);
         if k > 0 {
             // p = x^k·q exactly: the roots are 0 and those of q, and q(0) ≠ 0.
             return with_quotient(self, k, |q| {
                 Ok(if lo < 0.0 && 0.0 <= hi {
-                    q.smallest_root_inner(lo, 0.0, opts, stats)?.or(Some(0.0))
+                    q.smallest_root_inner(lo, 0.0, opts, slack, stats)?
+                        .or(Some(0.0))
                 } else {
-                    q.smallest_root_inner(lo, hi, opts, stats)?
+                    q.smallest_root_inner(lo, hi, opts, slack, stats)?
                 })
             });
         }
         match opts.isolation {
-            IsolationMethod::Bernstein => Ok(certified_smallest(self, lo, hi, opts, stats)),
+            IsolationMethod::Bernstein => certified_smallest(self, lo, hi, opts, slack, stats),
             IsolationMethod::Exact => Ok(exact_smallest(self, lo, hi, opts.tolerance(), stats)),
             IsolationMethod::Sturm => sturm_smallest(self, lo, hi, opts, stats),
             IsolationMethod::StamSturm => match StamSturm::new(self) {
@@ -406,7 +432,7 @@ impl Poly<f64> {
         stats: &mut RootStats,
         out: &mut Vec<RootInterval<f64>>,
     ) -> Result<(), RootError> {
-        if let Some((k, lo, hi)) = zero_root_split(self, a, b, opts)? {
+        if let Some((k, lo, hi)) = zero_root_split(self, a, b, opts, Slack::NONE)? {
             let zero = RootInterval { lo: 0.0, hi: 0.0 };
             return with_quotient(self, k, |q| {
                 around_zero(q, (lo, hi), zero, stats, out, |q, lo, hi, s, out| {
@@ -414,7 +440,7 @@ impl Poly<f64> {
                 })
             });
         }
-        match self.isolate_inner(a, b, opts, stats)? {
+        match self.isolate_inner(a, b, opts, Slack::NONE, stats)? {
             Isolation::Certified(search) => {
                 out.extend(search.found.into_iter().map(|f| match f {
                     Found::Bracket(b) => RootInterval { lo: b.lo, hi: b.hi },
@@ -501,9 +527,27 @@ impl Poly<f64> {
         stats: &mut RootStats,
         out: &mut Vec<f64>,
     ) -> Result<(), RootError> {
+        self.real_roots_into_slack(a, b, opts, Slack::NONE, stats, out)
+    }
+
+    /// [`real_roots_into`](Poly::real_roots_into) for every polynomial within `slack` of
+    /// the stored one ([`RootQuery::value_slack`](crate::RootQuery::value_slack)).
+    pub(crate) fn real_roots_into_slack(
+        &self,
+        a: f64,
+        b: f64,
+        opts: &RootOptions,
+        slack: Slack<'_>,
+        stats: &mut RootStats,
+        out: &mut Vec<f64>,
+    ) -> Result<(), RootError> {
         let before = out.len();
         let found = stats.record_all(self.degree(), |s| {
-            self.real_roots_push(a, b, opts, s, out)?;
+            if slack.is_some() && !slack_applies(a, b, opts) {
+                validate(self, a, b, opts)?;
+                return Err(RootError::SlackLimited { lo: a, hi: b });
+            }
+            self.real_roots_push(a, b, opts, slack, s, out)?;
             Ok(out.len() - before)
         });
         if found.is_err() {
@@ -517,20 +561,24 @@ impl Poly<f64> {
         a: f64,
         b: f64,
         opts: &RootOptions,
+        slack: Slack<'_>,
         stats: &mut RootStats,
         out: &mut Vec<f64>,
     ) -> Result<(), RootError> {
-        if let Some((k, lo, hi)) = zero_root_split(self, a, b, opts)? {
+        if let Some((k, lo, hi)) = zero_root_split(self, a, b, opts, slack)? {
             return with_quotient(self, k, |q| {
                 around_zero(q, (lo, hi), 0.0, stats, out, |q, lo, hi, s, out| {
-                    q.real_roots_push(lo, hi, opts, s, out)
+                    q.real_roots_push(lo, hi, opts, slack, s, out)
                 })
             });
         }
-        match self.isolate_inner(a, b, opts, stats)? {
+        match self.isolate_inner(a, b, opts, slack, stats)? {
             Isolation::Certified(search) => {
+                if let Some((lo, hi)) = search.slack_limited {
+                    return Err(RootError::SlackLimited { lo, hi });
+                }
                 for f in &search.found {
-                    out.push(refine_found(self, &search, f, opts, stats));
+                    out.push(refine_found(self, &search, f, opts, slack, stats)?);
                 }
             }
             Isolation::Exact(seq, ivs) => {
@@ -548,13 +596,14 @@ impl Poly<f64> {
         Ok(())
     }
 
-    fn isolate_inner(
-        &self,
+    fn isolate_inner<'p>(
+        &'p self,
         a: f64,
         b: f64,
         opts: &RootOptions,
+        slack: Slack<'p>,
         stats: &mut RootStats,
-    ) -> Result<Isolation<'_>, RootError> {
+    ) -> Result<Isolation<'p>, RootError> {
         let (lo, hi) = match prepare(self, a, b, opts)? {
             // Nothing to search: no roots (any variant with an empty list says so).
             Range::Empty => return Ok(Isolation::Heuristic(Vec::new())),
@@ -563,7 +612,7 @@ impl Poly<f64> {
         Ok(match opts.isolation {
             IsolationMethod::Bernstein => {
                 if lo.is_finite() && hi.is_finite() {
-                    Isolation::Certified(CertifiedSearch::run(self, lo, hi, false, stats))
+                    Isolation::Certified(CertifiedSearch::run(self, lo, hi, false, slack, stats))
                 } else {
                     stats.exact_fallbacks += 1;
                     exact_isolation(self, lo, hi, false, stats)
@@ -614,9 +663,16 @@ enum Isolation<'p> {
 /// subdivisions to see: a shadow ray leaving the plane `x = 1` of `x³² − 1` meets
 /// `(1 + d·s)³² − 1 + δ` on `(0, B]`, all coefficients positive (issue 11; `docs/speed.md`,
 /// "High-degree surfaces").
-fn no_root_by_descartes(c: &[f64], lo: f64, hi: f64) -> bool {
+///
+/// With a value slack `slack > 0` valid on `[−R, R]`, `R = max(|lo|, |hi|)`, each true
+/// coefficient differs from the stored one by at most `slack/Rⁱ`; a coefficient's sign is
+/// then used only when `|cᵢ|Rⁱ` (rounded down) exceeds the slack, and any coefficient within
+/// it makes the rule say nothing (a true zero or either sign is possible).
+fn no_root_by_descartes(c: &[f64], lo: f64, hi: f64, slack: f64) -> bool {
+    let r = lo.abs().max(hi.abs());
     let changes = |flip: bool| {
         let mut last = 0i8;
+        let mut r_i = 1.0f64;
         for (i, &ci) in c.iter().enumerate() {
             let mut s = if ci > 0.0 {
                 1
@@ -625,6 +681,16 @@ fn no_root_by_descartes(c: &[f64], lo: f64, hi: f64) -> bool {
             } else {
                 0
             };
+            if slack > 0.0 {
+                // r_i = Rⁱ with i roundings; the product one more: (1 − 2(i + 2)ε) makes the
+                // computed |cᵢ|Rⁱ a lower bound.
+                let low = ci.abs() * r_i * (1.0 - 2.0 * (i + 2) as f64 * f64::EPSILON);
+                // (A NaN is not above the slack either.)
+                if low.partial_cmp(&slack) != Some(std::cmp::Ordering::Greater) {
+                    return true;
+                }
+                r_i *= r;
+            }
             if flip && i % 2 == 1 {
                 s = -s;
             }
@@ -646,16 +712,26 @@ fn no_root_by_descartes(c: &[f64], lo: f64, hi: f64) -> bool {
     }
 }
 
-/// The default certified query: closed form, then Bernstein isolation, then refinement.
+/// Whether a value slack can apply to a query on `(lo, hi]`: not with an infinite end (no
+/// finite radius bounds the difference), nor with the methods that certify only the stored
+/// coefficients (exact) or nothing (the Sturm heuristics). Such queries are refused as
+/// [`RootError::SlackLimited`] on the whole range (after the usual validation).
+fn slack_applies(lo: f64, hi: f64, opts: &RootOptions) -> bool {
+    opts.isolation == IsolationMethod::Bernstein && lo.is_finite() && hi.is_finite()
+}
+
+/// The default certified query: closed form, then Bernstein isolation, then refinement; with
+/// a value slack, no closed form and no escalation beyond `f64` ([`RootError::SlackLimited`]).
 fn certified_smallest(
     p: &Poly<f64>,
     lo: f64,
     hi: f64,
     opts: &RootOptions,
+    slack: Slack<'_>,
     stats: &mut RootStats,
-) -> Option<f64> {
+) -> Result<Option<f64>, RootError> {
     let c = p.coeffs();
-    if opts.closed_form {
+    if opts.closed_form && !slack.is_some() {
         // First: the closed forms take infinite ends as they come.
         let decided = match c.len() {
             2 => linear_smallest(c, lo, hi),
@@ -664,54 +740,126 @@ fn certified_smallest(
         };
         if let Some(answer) = decided {
             stats.closed_form += 1;
-            return answer;
+            return Ok(answer);
         }
     }
-    if no_root_by_descartes(c, lo, hi) {
-        return None;
+    let range_slack = slack.at(lo.abs().max(hi.abs()));
+    if no_root_by_descartes(c, lo, hi, range_slack) {
+        return Ok(None);
     }
     if !(lo.is_finite() && hi.is_finite()) {
         stats.exact_fallbacks += 1;
-        return exact_smallest(p, lo, hi, opts.tolerance(), stats);
+        return Ok(exact_smallest(p, lo, hi, opts.tolerance(), stats));
     }
-    let signs = certified_sign_pair(c, lo, hi);
+    let signs = end_signs(c, lo, hi, slack, range_slack);
     if hi - lo <= opts.tolerance().on(lo, hi) && signs.0 * signs.1 < 0 {
         // Every point of the interval is within x_tol of any root in it, and opposite end
         // signs prove one: no isolation needed (a shadow ray's "is anything in the way").
-        return Some(lo + 0.5 * (hi - lo));
+        return Ok(Some(lo + 0.5 * (hi - lo)));
     }
-    let search = CertifiedSearch::run_with_signs(p, (lo, hi), signs, true, stats);
-    let first = search.found.first()?;
-    Some(refine_found(p, &search, first, opts, stats))
+    let search =
+        CertifiedSearch::run_with_signs(p, (lo, hi), signs, true, (slack, range_slack), stats);
+    match (search.found.first(), search.slack_limited) {
+        (Some(first), _) => refine_found(p, &search, first, opts, slack, stats).map(Some),
+        (None, Some((lo, hi))) => Err(RootError::SlackLimited { lo, hi }),
+        (None, None) => Ok(None),
+    }
 }
 
 /// Refines one root of a certified search: a bracket in `f64` (exact finish if needed); an
 /// exact interval also in `f64` when its end signs certify it as a bracket (it holds one
 /// distinct root, so opposite signs make it one of odd multiplicity), else with the exact
 /// sequence.
+///
+/// With a value slack only `f64` brackets occur (the search stops before any exact piece),
+/// and a refinement that the slack stops is [`RootError::SlackLimited`] on its bracket.
 fn refine_found(
     p: &Poly<f64>,
     search: &CertifiedSearch<'_>,
     found: &Found,
     opts: &RootOptions,
+    slack: Slack<'_>,
     stats: &mut RootStats,
-) -> f64 {
+) -> Result<f64, RootError> {
+    if let (Found::Bracket(b), true) = (found, slack.is_some()) {
+        // The slack is taken at the bracket's radius; when refinement stops, at the narrower
+        // stuck bracket's (a slack of degree N falls like Rᴺ), and refinement goes on from
+        // there; last, point by point.
+        let (mut b, mut s) = (*b, search.top_slack.1);
+        for _ in 0..MAX_SLACK_RETRIES {
+            match refine_bracket(p.coeffs(), b, opts.tolerance(), opts.refine, s, stats) {
+                Refined::Root(r) => return Ok(r),
+                Refined::Stuck(stuck) => {
+                    let tighter = slack.at(stuck.lo.abs().max(stuck.hi.abs()));
+                    b = stuck;
+                    if tighter.partial_cmp(&(MIN_SLACK_GAIN * s)) != Some(std::cmp::Ordering::Less)
+                    {
+                        break;
+                    }
+                    s = tighter;
+                }
+            }
+        }
+        return refine_pointwise(p.coeffs(), b, opts.tolerance(), slack);
+    }
     let bracket = match found {
         Found::Bracket(b) => Some(*b),
         Found::Exact(iv) if !iv.is_point() => {
             let c = p.coeffs();
-            let s_lo = certified_sign(c, iv.lo);
-            (s_lo != 0 && certified_sign(c, iv.hi) == -s_lo)
+            let s_lo = certified_sign(c, iv.lo, 0.0);
+            (s_lo != 0 && certified_sign(c, iv.hi, 0.0) == -s_lo)
                 .then(|| Bracket::new(iv.lo, iv.hi, s_lo))
         }
         Found::Exact(_) => None,
     };
-    match (bracket, found, search.exact_sequence()) {
+    Ok(match (bracket, found, search.exact_sequence()) {
         (Some(b), _, _) => refine_certified(p, b, opts.tolerance(), opts.refine, stats),
         (None, Found::Bracket(_), _) => unreachable!("brackets are refined in f64"),
         (None, Found::Exact(iv), Some(seq)) => refine_exact_interval(seq, iv, opts.tolerance()),
         (None, Found::Exact(iv), None) => unreachable!("exact interval {iv:?} without a sequence"),
+    })
+}
+
+/// Most restarts of a slack-limited refinement with the slack of its narrower bracket.
+const MAX_SLACK_RETRIES: u32 = 4;
+
+/// A restart of a slack-limited refinement is worth it only when the narrower bracket's
+/// slack is below this fraction of the one that stopped it.
+const MIN_SLACK_GAIN: f64 = 0.5;
+
+/// Bisection of a bracket that the refinement's bracket-wide slack stopped, with each
+/// midpoint's sign tested against the slack at that point's own radius (a value at `x` needs
+/// only `slack(|x|)`, far below the bracket's when it reaches past the root of a high-degree
+/// restriction). A midpoint within its slack of zero is the answer when the points `x_tol/2`
+/// either side have the bracket's signs (the root is then within `x_tol/2` of it), else
+/// [`RootError::SlackLimited`] on the bracket reached.
+fn refine_pointwise(
+    c: &[f64],
+    b: Bracket,
+    tol: Tolerance,
+    slack: Slack<'_>,
+) -> Result<f64, RootError> {
+    let (mut lo, mut hi) = (b.lo, b.hi);
+    while hi - lo > tol.on(lo, hi) * (1.0 - f64::EPSILON) && lo.next_up() < hi {
+        let m = lo + 0.5 * (hi - lo);
+        let m = if m > lo && m < hi { m } else { lo.next_up() };
+        match certified_sign(c, m, slack.at(m)) {
+            0 => {
+                let delta = half_tol(tol.on(lo, hi));
+                let (l, h) = (m - delta, m + delta);
+                let l_ok = l <= lo || certified_sign(c, l, slack.at(l)) == b.s_lo;
+                let h_ok = h >= hi || certified_sign(c, h, slack.at(h)) == -b.s_lo;
+                return if l_ok && h_ok {
+                    Ok(m)
+                } else {
+                    Err(RootError::SlackLimited { lo, hi })
+                };
+            }
+            s if s == b.s_lo => lo = m,
+            _ => hi = m,
+        }
     }
+    Ok(lo + 0.5 * (hi - lo))
 }
 
 /// Refines a certified bracket; where `f64` gets stuck, finishes in adaptive precision, and
@@ -723,7 +871,7 @@ fn refine_certified(
     method: RefineMethod,
     stats: &mut RootStats,
 ) -> f64 {
-    match refine_bracket(p.coeffs(), b, tol, method, stats) {
+    match refine_bracket(p.coeffs(), b, tol, method, 0.0, stats) {
         Refined::Root(r) => r,
         Refined::Stuck(b) => refine_wide(p.coeffs(), b, tol, stats).unwrap_or_else(|| {
             stats.refine_fallbacks += 1;
@@ -852,7 +1000,7 @@ fn count_contradicted(c: &[f64], a: f64, b: f64) -> bool {
     };
     let sign = |x: f64| {
         if x.is_finite() {
-            certified_sign(c, x)
+            certified_sign(c, x, 0.0)
         } else {
             let lead = if c[n] > 0.0 { 1 } else { -1 };
             if x < 0.0 && n % 2 == 1 { -lead } else { lead }
@@ -900,7 +1048,7 @@ fn refine_heuristic(
 ) -> Result<f64, RootError> {
     let c = p.coeffs();
     let (lo, hi) = (iv.lo.max(-f64::MAX), iv.hi.min(f64::MAX));
-    let (s_lo, s_hi) = (certified_sign(c, lo), certified_sign(c, hi));
+    let (s_lo, s_hi) = (certified_sign(c, lo, 0.0), certified_sign(c, hi, 0.0));
     if s_lo != 0 && s_hi == -s_lo {
         let b = Bracket::new(lo, hi, s_lo);
         Ok(refine_certified(p, b, opts.tolerance(), opts.refine, stats))
@@ -1258,15 +1406,15 @@ mod tests {
             .map(|(i, &ci)| if i % 2 == 1 { -ci } else { ci })
             .collect();
         assert!(
-            no_root_by_descartes(&mirrored, -20.0, 0.0),
+            no_root_by_descartes(&mirrored, -20.0, 0.0, 0.0),
             "p(−x): no negative root"
         );
         assert!(
-            !no_root_by_descartes(&mirrored, -20.0, 1.0),
+            !no_root_by_descartes(&mirrored, -20.0, 1.0, 0.0),
             "a range across 0: maybe"
         );
         assert!(
-            !no_root_by_descartes(&[0.0, 1.0, 1.0], -20.0, 0.0),
+            !no_root_by_descartes(&[0.0, 1.0, 1.0], -20.0, 0.0, 0.0),
             "0 is a root"
         );
         c[0] = -1e-9;

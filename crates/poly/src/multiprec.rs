@@ -352,7 +352,7 @@ fn dd_sign(c: &[f64], x: f64) -> i8 {
 /// from `from` up to [`MAX_BITS`]; 0 when none decides (then `p(x)` is zero or within
 /// `2^-1000` of the scale `Σ|cᵢ||x|ⁱ`). Returns the tier that decided (`from` when `f64` did).
 pub(crate) fn point_sign(c: &[f64], x: f64, from: Tier) -> (i8, Tier) {
-    let s = certified_sign(c, x);
+    let s = certified_sign(c, x, 0.0);
     if s != 0 {
         return (s, from);
     }
@@ -363,7 +363,7 @@ pub(crate) fn point_sign(c: &[f64], x: f64, from: Tier) -> (i8, Tier) {
 /// [`point_sign`] with an approximate value of `p(x)` (NaN when unknown), for placing the
 /// next trial point of a refinement.
 fn point_sign_value(c: &[f64], x: f64, from: Tier) -> (i8, Tier, f64) {
-    let (v, s) = certified_value(c, x);
+    let (v, s) = certified_value(c, x, 0.0);
     if s != 0 {
         return (s, from, v);
     }

@@ -89,6 +89,7 @@ impl<'a> PolyRef<'a> {
             range: (lo, hi),
             opts: *opts,
             stats: None,
+            slack: Slack::NONE,
         }
     }
 }
@@ -121,8 +122,60 @@ impl Poly<f64> {
     }
 }
 
+/// A caller's bound on how far the true polynomial may lie from the stored one, as a
+/// function of the radius: `slack(R) ≥ Σₖ |Δcₖ|·Rᵏ`, where `Δcₖ` is the difference between
+/// the true and the stored coefficient of `xᵏ`. It must be non-decreasing in `R` (any such
+/// sum is). See [`RootQuery::value_slack`].
+///
+/// Why a function and not one number for the whole range: on a run over `[a, b]` the
+/// isolator needs the bound only at `R = max(|a|, |b|)`, and the certified search's fresh runs
+/// on pieces near 0 (and the refinement of a bracket) then get a smaller one. One number taken
+/// at the far end of a wide range grows like `Rᴺ` and, at degree 32, swamps the values near
+/// the roots (`paper-notes/implicit-surfaces.md` §6).
+#[derive(Clone, Copy)]
+pub(crate) struct Slack<'a>(Option<&'a dyn Fn(f64) -> f64>);
+
+/// Relative widening of the radius at which [`Slack`] is asked: a run on `(lo, hi]` works on
+/// `[lo, lo + w]` with `w = hi − lo` rounded up, which reaches at most `2u·max(|lo|, |hi|)`
+/// past `hi`; `4ε = 8u` covers that and the rounding of the product.
+const SLACK_RADIUS_MARGIN: f64 = 1.0 + 4.0 * f64::EPSILON;
+
+impl<'a> Slack<'a> {
+    /// No slack: the stored polynomial is the true one.
+    pub(crate) const NONE: Slack<'static> = Slack(None);
+
+    /// True when a slack function was given.
+    #[inline]
+    pub(crate) fn is_some(&self) -> bool {
+        self.0.is_some()
+    }
+
+    /// The slack valid on `[−r, r]` (widened by [`SLACK_RADIUS_MARGIN`]); 0 without a slack
+    /// function, `+∞` for an infinite `r` or a NaN answer (nothing can then be certified).
+    #[inline]
+    pub(crate) fn at(&self, r: f64) -> f64 {
+        match self.0 {
+            None => 0.0,
+            Some(f) => {
+                let s = f(r.abs() * SLACK_RADIUS_MARGIN);
+                if s >= 0.0 { s } else { f64::INFINITY }
+            }
+        }
+    }
+}
+
+impl std::fmt::Debug for Slack<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(if self.0.is_some() {
+            "Slack(fn)"
+        } else {
+            "Slack(none)"
+        })
+    }
+}
+
 /// A root query being built: polynomial, range `(lo, hi]`, options, and optionally the
-/// statistics to fill in. Made by [`PolyRef::roots`] or [`Poly::roots`].
+/// statistics to fill in and a value slack. Made by [`PolyRef::roots`] or [`Poly::roots`].
 ///
 /// # Accuracy
 /// Each answer is that of the [`Poly`] method of the same purpose with the same options:
@@ -144,6 +197,7 @@ pub struct RootQuery<'p, 's> {
     range: (f64, f64),
     opts: RootOptions,
     stats: Option<&'s mut RootStats>,
+    slack: Slack<'p>,
 }
 
 thread_local! {
@@ -177,6 +231,37 @@ impl<'p, 's> RootQuery<'p, 's> {
             range: self.range,
             opts: self.opts,
             stats: Some(stats),
+            slack: self.slack,
+        }
+    }
+
+    /// Certifies the answer for every polynomial within `slack` of the stored one, instead
+    /// of for the stored coefficients alone: `slack(R)` must bound `Σₖ |Δcₖ|·Rᵏ` for the
+    /// differences `Δcₖ` between the true coefficients and the stored ones, for every `R ≥ 0`,
+    /// and be non-decreasing in `R`. A ray tracer that computed the coefficients in floating
+    /// point passes its bound on their rounding here.
+    ///
+    /// # Accuracy
+    /// Every sign the certified path uses — Bernstein coefficients on each sub-interval
+    /// (blossom values, each bounded by `Σ|Δcₖ|Rᵏ` on `[−R, R]`), the values at the ends, at
+    /// refinement points — must exceed its rounding bound *plus* `slack(R)`. Each answer is
+    /// then that of the *true* polynomial, with the guarantees of the query without slack.
+    /// Where a sign stays undecided because of the slack, no precision of the stored
+    /// coefficients can help, so the query does not escalate to double-double, wide floats or
+    /// exact arithmetic: it answers [`RootError::SlackLimited`] (counted in
+    /// [`RootStats::slack_limited`]), and the caller must tighten the coefficients (compute
+    /// them more accurately, or exactly). The same answer for an infinite end, for the
+    /// heuristic and exact isolation methods (which certify only stored coefficients), and
+    /// for a root the slack leaves closer to the range's start than it can separate.
+    ///
+    /// # Cost
+    /// `slack` is called once per Bernstein run and once per refinement (usually twice a
+    /// query); the sign tests add one addition each. Closed forms (degrees 1–2) and the
+    /// `x^k` deflation are skipped: they read the stored coefficients as exact.
+    pub fn value_slack(self, slack: &'p dyn Fn(f64) -> f64) -> Self {
+        RootQuery {
+            slack: Slack(Some(slack)),
+            ..self
         }
     }
 
@@ -184,7 +269,7 @@ impl<'p, 's> RootQuery<'p, 's> {
     /// or a throw-away set).
     fn run<R>(
         self,
-        f: impl FnOnce(&Poly<f64>, (f64, f64), &RootOptions, &mut RootStats) -> R,
+        f: impl FnOnce(&Poly<f64>, (f64, f64), &RootOptions, Slack<'_>, &mut RootStats) -> R,
     ) -> R {
         // Zeroed only when the caller keeps no statistics: `RootStats` is ~300 bytes, and
         // clearing it on every query was a measurable share of a torus ray (a memset per
@@ -198,9 +283,9 @@ impl<'p, 's> RootQuery<'p, 's> {
             }
         };
         match self.owned {
-            Some(p) => f(p, self.range, &self.opts, stats),
+            Some(p) => f(p, self.range, &self.opts, self.slack, stats),
             None => with_scratch_poly(&BORROWED, self.coeffs, |p| {
-                f(p, self.range, &self.opts, stats)
+                f(p, self.range, &self.opts, self.slack, stats)
             }),
         }
     }
@@ -212,7 +297,7 @@ impl<'p, 's> RootQuery<'p, 's> {
     /// # Errors
     /// As [`Poly::try_smallest_root`].
     pub fn smallest(self) -> Result<Option<f64>, RootError> {
-        self.run(|p, (lo, hi), o, s| p.try_smallest_root(lo, hi, o, s))
+        self.run(|p, (lo, hi), o, sl, s| p.try_smallest_root_slack(lo, hi, o, sl, s))
     }
 
     /// Every distinct real root in `(lo, hi]`, sorted, as [`Poly::real_roots_with`].
@@ -231,7 +316,7 @@ impl<'p, 's> RootQuery<'p, 's> {
     /// # Errors
     /// As [`Poly::real_roots_into`].
     pub fn all_into(self, out: &mut Vec<f64>) -> Result<(), RootError> {
-        self.run(|p, (lo, hi), o, s| p.real_roots_into(lo, hi, o, s, out))
+        self.run(|p, (lo, hi), o, sl, s| p.real_roots_into_slack(lo, hi, o, sl, s, out))
     }
 
     /// Isolating intervals of every distinct real root in `(lo, hi]`, as
@@ -240,13 +325,66 @@ impl<'p, 's> RootQuery<'p, 's> {
     /// # Errors
     /// As [`Poly::isolate_roots_with`].
     pub fn isolate(self) -> Result<Vec<RootInterval<f64>>, RootError> {
-        self.run(|p, (lo, hi), o, s| p.isolate_roots_with(lo, hi, o, s))
+        self.run(|p, (lo, hi), o, sl, s| {
+            if sl.is_some() {
+                // Intervals are not refined, so they certify nothing about a true polynomial.
+                s.slack_limited += 1;
+                return Err(RootError::SlackLimited { lo, hi });
+            }
+            p.isolate_roots_with(lo, hi, o, s)
+        })
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Issue 11: a value slack is folded into every sign test, and a sign it leaves undecided
+    /// is reported, never escalated to higher precision of the stored coefficients.
+    #[test]
+    fn value_slack_certifies_nearby_polynomials_or_says_it_cannot() {
+        let o = RootOptions::new(1e-12);
+        // x² + 1e-10: no real root as stored, but x² − 1e-10 (two roots ±1e-5) is within a
+        // slack of 1e-9: the answer depends on it.
+        let tight = |_r: f64| 1e-12;
+        let wide = |_r: f64| 1e-9;
+        let p = PolyRef::new(&[1e-10, 0.0, 1.0]);
+        let mut s = RootStats::default();
+        assert_eq!(p.roots(-1.0, 1.0, &o).smallest(), Ok(None), "as stored");
+        let q = p.roots(-1.0, 1.0, &o).value_slack(&tight).stats(&mut s);
+        assert_eq!(q.smallest(), Ok(None), "a small slack keeps the answer");
+        let q = p.roots(-1.0, 1.0, &o).value_slack(&wide).stats(&mut s);
+        assert!(
+            matches!(q.smallest(), Err(RootError::SlackLimited { .. })),
+            "a wide slack is reported"
+        );
+        assert_eq!(s.slack_limited, 1, "{s:?}");
+        assert_eq!(
+            (s.adaptive_pieces, s.exact_fallbacks, s.closed_form),
+            (0, 0, 0),
+            "no escalation, no closed form: {s:?}"
+        );
+        // Well-separated roots: the same answers with a slack growing like the degree.
+        let r = Poly::<f64>::from_roots(&[-0.75, 0.125, 0.5, 0.875]);
+        // (A root moves by about slack/|p'| ≈ 1e-12 here: the tolerance is above that.)
+        let grow = |r: f64| 1e-13 * (1.0 + r).powi(4);
+        let o = RootOptions::new(1e-10);
+        let with = r.roots(-1.0, 1.0, &o).value_slack(&grow).all().unwrap();
+        assert_eq!(with.len(), 4, "{with:?}");
+        for (a, b) in with.iter().zip(r.real_roots(-1.0, 1.0, 1e-10).unwrap()) {
+            assert!((a - b).abs() <= 2e-10, "{a} vs {b}");
+        }
+        assert!(
+            matches!(
+                r.roots(0.0, f64::INFINITY, &o)
+                    .value_slack(&grow)
+                    .smallest(),
+                Err(RootError::SlackLimited { .. })
+            ),
+            "no slack holds on an infinite range"
+        );
+    }
 
     #[test]
     fn borrowed_and_owned_queries_agree_and_stats_are_optional() {

@@ -57,36 +57,41 @@ fn midpoint(lo: f64, hi: f64) -> f64 {
 /// `x_tol` is below it. Precondition: `b` holds exactly one distinct root, of odd multiplicity,
 /// with `sign p(lo) = s_lo = −sign p(hi)` certified. Cost grows like `log2(width/x_tol)`
 /// evaluations for bisection, roughly its logarithm for Illinois and Newton on simple roots.
+/// `slack` (0 for the stored polynomial) widens every sign test by a caller's bound on the
+/// distance of the true polynomial from the stored one on the bracket: the root refined is
+/// then the true polynomial's, and a trial point within `slack` of zero stops the refinement
+/// (`Stuck`), as rounding does.
 pub(crate) fn refine_bracket(
     p: &[f64],
     b: Bracket,
     tol: Tolerance,
     method: RefineMethod,
+    slack: f64,
     stats: &mut RootStats,
 ) -> Refined {
     match method {
-        RefineMethod::Bisection => bisection(p, b, tol, stats),
-        RefineMethod::Illinois => illinois(p, b, tol, stats),
-        RefineMethod::NewtonBisection => newton(p, b, tol, stats),
+        RefineMethod::Bisection => bisection(p, b, tol, slack, stats),
+        RefineMethod::Illinois => illinois(p, b, tol, slack, stats),
+        RefineMethod::NewtonBisection => newton(p, b, tol, slack, stats),
     }
 }
 
 /// Stam's bisection (seed §3.5.3) with certified signs.
-fn bisection(p: &[f64], b: Bracket, tol: Tolerance, stats: &mut RootStats) -> Refined {
+fn bisection(p: &[f64], b: Bracket, tol: Tolerance, slack: f64, stats: &mut RootStats) -> Refined {
     let Bracket {
         mut lo,
         mut hi,
         s_lo,
         ..
     } = b;
-    let err = bracket_error_bound(p, lo, hi);
+    let err = bracket_error_bound(p, lo, hi) + slack;
     for _ in 0..MAX_ITERATIONS {
         if narrow_enough(lo, hi, tol) {
             return Refined::Root(midpoint_or_lo(lo, hi));
         }
         let m = midpoint(lo, hi);
         stats.refine_evals += 1;
-        let (_, s) = sign_with(p, m, horner(p, &m), err);
+        let (_, s) = sign_with(p, m, horner(p, &m), err, slack);
         match s {
             0 => return Refined::Stuck(Bracket::new(lo, hi, s_lo)),
             s if s == s_lo => lo = m,
@@ -107,12 +112,19 @@ fn midpoint_or_lo(lo: f64, hi: f64) -> f64 {
 /// Tries to close the bracket around a trial point `x` whose sign was uncertain: if
 /// `x − δ` and `x + δ` (clipped to the bracket) have certified signs on the two sides, the
 /// root is within `δ` of `x`.
-fn probe(p: &[f64], b: Bracket, x: f64, delta: f64, stats: &mut RootStats) -> Option<f64> {
+fn probe(
+    p: &[f64],
+    b: Bracket,
+    x: f64,
+    delta: f64,
+    slack: f64,
+    stats: &mut RootStats,
+) -> Option<f64> {
     let l = x - delta;
     let h = x + delta;
     stats.refine_evals += 2;
-    let left_ok = l <= b.lo || certified_sign(p, l) == b.s_lo;
-    let right_ok = h >= b.hi || certified_sign(p, h) == -b.s_lo;
+    let left_ok = l <= b.lo || certified_sign(p, l, slack) == b.s_lo;
+    let right_ok = h >= b.hi || certified_sign(p, h, slack) == -b.s_lo;
     (left_ok && right_ok).then_some(x)
 }
 
@@ -123,9 +135,10 @@ fn probe_or_stuck(
     bracket: Bracket,
     x: f64,
     delta: f64,
+    slack: f64,
     stats: &mut RootStats,
 ) -> Refined {
-    match probe(p, bracket, x, delta, stats) {
+    match probe(p, bracket, x, delta, slack, stats) {
         Some(r) => Refined::Root(r),
         None => Refined::Stuck(bracket),
     }
@@ -139,7 +152,7 @@ pub(crate) fn half_tol(x_tol: f64) -> f64 {
 /// Illinois regula falsi, safeguarded: the trial point is kept `δ = x_tol/2` away from the
 /// ends (so the far end closes in), and a bisection step replaces it whenever three steps have
 /// not halved the bracket.
-fn illinois(p: &[f64], b: Bracket, tol: Tolerance, stats: &mut RootStats) -> Refined {
+fn illinois(p: &[f64], b: Bracket, tol: Tolerance, slack: f64, stats: &mut RootStats) -> Refined {
     let f_lo = if b.f_lo.is_nan() {
         horner(p, &b.lo)
     } else {
@@ -150,11 +163,13 @@ fn illinois(p: &[f64], b: Bracket, tol: Tolerance, stats: &mut RootStats) -> Ref
     } else {
         b.f_hi
     };
-    let err = bracket_error_bound(p, b.lo, b.hi);
-    let eval = |x: f64| sign_with(p, x, horner(p, &x), err);
+    let err = bracket_error_bound(p, b.lo, b.hi) + slack;
+    let eval = |x: f64| sign_with(p, x, horner(p, &x), err, slack);
     match illinois_by(Bracket { f_lo, f_hi, ..b }, tol, stats, eval) {
         IllinoisEnd::Root(r) => Refined::Root(r),
-        IllinoisEnd::Undecided { bracket, x, delta } => probe_or_stuck(p, bracket, x, delta, stats),
+        IllinoisEnd::Undecided { bracket, x, delta } => {
+            probe_or_stuck(p, bracket, x, delta, slack, stats)
+        }
         IllinoisEnd::Exhausted(bracket) => Refined::Stuck(bracket),
     }
 }
@@ -249,7 +264,7 @@ pub(crate) fn illinois_by(
 /// `rtsafe`): a step that leaves the bracket, or is not less than half the step before the
 /// last, is replaced by bisection; steps shorter than `δ = x_tol/2` are lengthened to `δ` so
 /// the far end of the bracket closes in.
-fn newton(p: &[f64], b: Bracket, tol: Tolerance, stats: &mut RootStats) -> Refined {
+fn newton(p: &[f64], b: Bracket, tol: Tolerance, slack: f64, stats: &mut RootStats) -> Refined {
     let Bracket {
         mut lo,
         mut hi,
@@ -272,6 +287,7 @@ fn newton(p: &[f64], b: Bracket, tol: Tolerance, stats: &mut RootStats) -> Refin
     let mut step = step_old;
     // The bracket-wide bound (see `bracket_error_bound`) computed with the first trial value.
     let (f0, df0, err) = horner_derivative_and_bound(p, x, lo.abs().max(hi.abs()));
+    let err = err + slack;
     let mut first = Some((f0, df0));
     for _ in 0..MAX_ITERATIONS {
         if narrow_enough(lo, hi, tol) {
@@ -280,9 +296,9 @@ fn newton(p: &[f64], b: Bracket, tol: Tolerance, stats: &mut RootStats) -> Refin
         stats.refine_evals += 1;
         let delta = half_tol(tol.on(lo, hi));
         let (fx, dfx) = first.take().unwrap_or_else(|| horner_with_derivative(p, x));
-        let (fx, s) = sign_with(p, x, fx, err);
+        let (fx, s) = sign_with(p, x, fx, err, slack);
         if s == 0 {
-            return probe_or_stuck(p, Bracket::new(lo, hi, s_lo), x, delta, stats);
+            return probe_or_stuck(p, Bracket::new(lo, hi, s_lo), x, delta, slack, stats);
         }
         if s == s_lo {
             lo = x;
@@ -328,13 +344,16 @@ fn bracket_error_bound(c: &[f64], lo: f64, hi: f64) -> f64 {
 /// The sign of `p(x)` from a plain value `fx` and the bracket-wide bound `err`, falling back
 /// to the sharper certified tiers when that bound cannot decide.
 #[inline]
-fn sign_with(c: &[f64], x: f64, fx: f64, err: f64) -> (f64, i8) {
+fn sign_with(c: &[f64], x: f64, fx: f64, err: f64, slack: f64) -> (f64, i8) {
     if fx > err {
         (fx, 1)
     } else if -fx > err {
         (fx, -1)
+    } else if slack > 0.0 && fx.abs() <= slack {
+        // Within the slack: no sharper rounding bound can decide.
+        (fx, 0)
     } else {
-        certified_value(c, x)
+        certified_value(c, x, slack)
     }
 }
 
@@ -482,6 +501,7 @@ mod tests {
                     b,
                     Tolerance::absolute(x_tol),
                     method,
+                    0.0,
                     &mut stats,
                 ) {
                     Refined::Root(r) => r,
@@ -510,7 +530,7 @@ mod tests {
         let (p, b) = sqrt2_bracket();
         let count = |m| {
             let mut s = RootStats::default();
-            refine_bracket(p.coeffs(), b, Tolerance::absolute(1e-14), m, &mut s);
+            refine_bracket(p.coeffs(), b, Tolerance::absolute(1e-14), m, 0.0, &mut s);
             s.refine_evals
         };
         let bis = count(RefineMethod::Bisection);
@@ -543,6 +563,7 @@ mod tests {
             b,
             Tolerance::absolute(1e-12),
             RefineMethod::Bisection,
+            0.0,
             &mut stats,
         );
         assert!(

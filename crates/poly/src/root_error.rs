@@ -33,6 +33,16 @@ pub enum RootError {
         /// Upper end.
         hi: f64,
     },
+    /// A query with a value slack ([`RootQuery::value_slack`](crate::RootQuery::value_slack))
+    /// met a sign in `(lo, hi]` that lies within the slack of zero: the answer depends on
+    /// digits the stored coefficients do not hold, so no precision of the isolation can
+    /// decide it. The caller must compute the polynomial more accurately (e.g. exactly).
+    SlackLimited {
+        /// Lower end of the undecided part of the range.
+        lo: f64,
+        /// Upper end.
+        hi: f64,
+    },
 }
 
 impl fmt::Display for RootError {
@@ -57,6 +67,10 @@ impl fmt::Display for RootError {
             RootError::Unresolved { lo, hi } => write!(
                 f,
                 "a heuristic method counted a root in ({lo}, {hi}] that no sign change confirms"
+            ),
+            RootError::SlackLimited { lo, hi } => write!(
+                f,
+                "a sign in ({lo}, {hi}] lies within the value slack of zero: the coefficients are not accurate enough"
             ),
         }
     }

@@ -59,6 +59,9 @@ pub struct RootStats {
     /// Refinements that `f64` could not finish and that were finished with adaptive-precision
     /// signs (before any exact refinement, [`refine_fallbacks`](Self::refine_fallbacks)).
     pub adaptive_refines: u64,
+    /// Queries with a value slack ([`RootQuery::value_slack`](crate::RootQuery::value_slack))
+    /// that a sign within the slack left undecided ([`RootError::SlackLimited`]).
+    pub slack_limited: u64,
     /// Interval subdivisions (de Casteljau splits or Sturm bisections) during isolation.
     pub subdivisions: u64,
     /// Polynomial evaluations during refinement.
@@ -81,6 +84,7 @@ impl RootStats {
         self.adaptive_pieces += other.adaptive_pieces;
         self.multiprecision_pieces += other.multiprecision_pieces;
         self.adaptive_refines += other.adaptive_refines;
+        self.slack_limited += other.slack_limited;
         self.subdivisions += other.subdivisions;
         self.refine_evals += other.refine_evals;
     }
@@ -104,6 +108,7 @@ impl RootStats {
     pub(crate) fn count_error(&mut self, e: &RootError) {
         match e {
             RootError::Unresolved { .. } => self.unresolved += 1,
+            RootError::SlackLimited { .. } => self.slack_limited += 1,
             _ => self.rejected += 1,
         }
     }

@@ -125,8 +125,8 @@ pub use crate::pipeline::{
 pub use crate::prepared::{PreparedScene, Primitive};
 pub use crate::scene::Scene;
 pub use crate::stats::{
-    Escalations, HIST_BINS, KindStats, PatchStats, PhaseTimes, SlowObject, SlowestCell,
-    StatsReport, TraceStats,
+    CertificationStats, Escalations, HIST_BINS, KindStats, PatchStats, PhaseTimes, SlowObject,
+    SlowestCell, StatsReport, TraceStats,
 };
 pub use crate::trivariate::{Eval3, Poly3, RestrictScratch, Term3};
 pub use crate::workspace::Workspace;

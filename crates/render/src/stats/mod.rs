@@ -54,6 +54,9 @@ pub struct TraceStats {
     pub singular_normals: u64,
     /// Root queries of the polynomial solver (by degree, exact fallbacks…).
     pub roots: RootStats,
+    /// Implicit-surface rays whose rounded restriction could not be certified against the
+    /// surface as written (`paper-notes/implicit-surfaces.md` §6).
+    pub surface_certification: CertificationStats,
     /// Bézier patch intersections: Stam's table (basis size, degrees) and rejections.
     pub patches: PatchStats,
     /// Nodes of the scene's BVH visited by nearest-hit and shadow queries.
@@ -64,6 +67,23 @@ pub struct TraceStats {
     /// The cell that took longest, with its root-query escalations (kept, not summed, by
     /// [`TraceStats::merge`]: the slower of the two).
     pub slowest: Option<SlowestCell>,
+}
+
+/// Rays of implicit surfaces (degree 3 and more) that the value slack of their rounded
+/// restriction left undecided ([`poly::RootError::SlackLimited`]; the queries are counted in
+/// `roots.slack_limited`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CertificationStats {
+    /// Rays restricted again in exact rational arithmetic (then rounded to `f64` with a
+    /// slack of the polynomial's own scale, which decides most), up to the degree
+    /// `EXACT_RESTRICTION_MAX_DEGREE` of the implicit-surface module.
+    pub exact_restrictions: u64,
+    /// Of those, rays whose rounded exact restriction still decided nothing, isolated with
+    /// exact Sturm sequences.
+    pub exact_isolations: u64,
+    /// Slack-limited rays above that degree, answered for the rounded restriction: the pixel
+    /// may be wrong, and this says how many.
+    pub undecided_rays: u64,
 }
 
 /// Counters for one kind of surface.
@@ -111,6 +131,9 @@ impl TraceStats {
         self.total_internal_reflections += o.total_internal_reflections;
         self.tir_merged += o.tir_merged;
         self.singular_normals += o.singular_normals;
+        self.surface_certification.exact_restrictions += o.surface_certification.exact_restrictions;
+        self.surface_certification.exact_isolations += o.surface_certification.exact_isolations;
+        self.surface_certification.undecided_rays += o.surface_certification.undecided_rays;
         self.roots.merge(&o.roots);
         self.patches.merge(&o.patches);
         self.bvh_node_visits += o.bvh_node_visits;
@@ -383,6 +406,27 @@ impl fmt::Display for StatsReport<'_> {
             f,
             "  refinement fallbacks               {:>12}",
             r.refine_fallbacks
+        )?;
+        writeln!(
+            f,
+            "  limited by the restriction's slack {:>12}",
+            r.slack_limited
+        )?;
+        let c = &s.surface_certification;
+        writeln!(
+            f,
+            "    rays restricted exactly          {:>12}",
+            c.exact_restrictions
+        )?;
+        writeln!(
+            f,
+            "      isolated exactly               {:>12}",
+            c.exact_isolations
+        )?;
+        writeln!(
+            f,
+            "    undecided rays (high degree)     {:>12}",
+            c.undecided_rays
         )?;
         writeln!(
             f,

@@ -24,6 +24,9 @@ pub struct Escalations {
     pub adaptive_refines: u64,
     /// Refinements finished with exact rational signs.
     pub refine_fallbacks: u64,
+    /// Queries whose restriction's rounding left a sign undecided
+    /// ([`RootStats::slack_limited`]): the ray was then restricted exactly, or is undecided.
+    pub slack_limited: u64,
 }
 
 impl Escalations {
@@ -36,6 +39,7 @@ impl Escalations {
             exact_fallbacks: r.exact_fallbacks,
             adaptive_refines: r.adaptive_refines,
             refine_fallbacks: r.refine_fallbacks,
+            slack_limited: r.slack_limited,
         }
     }
 
@@ -48,6 +52,7 @@ impl Escalations {
             exact_fallbacks: self.exact_fallbacks - before.exact_fallbacks,
             adaptive_refines: self.adaptive_refines - before.adaptive_refines,
             refine_fallbacks: self.refine_fallbacks - before.refine_fallbacks,
+            slack_limited: self.slack_limited - before.slack_limited,
         }
     }
 }
@@ -92,13 +97,15 @@ impl std::fmt::Display for Escalations {
         write!(
             f,
             "{} root queries; adaptive-precision pieces {} (beyond double-double {}), \
-             exact-rational fallbacks {}, refinements finished adaptively {} / exactly {}",
+             exact-rational fallbacks {}, refinements finished adaptively {} / exactly {}, \
+             limited by the restriction's slack {}",
             self.queries,
             self.adaptive_pieces,
             self.multiprecision_pieces,
             self.exact_fallbacks,
             self.adaptive_refines,
-            self.refine_fallbacks
+            self.refine_fallbacks,
+            self.slack_limited
         )
     }
 }

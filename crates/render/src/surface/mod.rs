@@ -41,7 +41,10 @@ pub use bezier_mesh::{
 };
 pub use bezier_patch::{BezierPatch, POWER_ZERO_REL};
 pub use cone::{Cone, ConeSide};
-pub use implicit::{ENTRY_MARGIN_REL, Implicit, ImplicitFn, ROOT_X_TOL_REL, SINGULAR_P_ERR_REL};
+pub use implicit::{
+    ENTRY_MARGIN_REL, EXACT_RESTRICTION_MAX_DEGREE, Implicit, ImplicitFn, ROOT_X_TOL_REL,
+    SINGULAR_P_ERR_REL,
+};
 pub use mesh::SmoothPolygon;
 pub use plane::Plane;
 pub use polygon::Polygon;

@@ -13,6 +13,7 @@
 //! See `paper-notes/implicit-surfaces.md` §3 for the restriction's coefficients.
 
 use glam::DVec3;
+use poly::{QPoly, Rat};
 
 use super::SurfaceKind;
 use super::implicit::ImplicitFn;
@@ -86,6 +87,40 @@ impl ImplicitFn for Torus {
             2.0 * a * b,
             a * a,
         ]);
+    }
+
+    /// `K` of the closed form in [`Torus::restrict`] (the surface as written is the torus of
+    /// radii `R`, `r`; Higham's standard model, counting each product's factors' roundings
+    /// plus its own): `a = d·d`, `b = 2o·d` carry 3 each, `c = o·o + R·R − r·r` 5; `c₀ =
+    /// c·c − m(o_x² + o_y²)` then `5 + 5 + 1 + 1 = 12`, `c₁ = 2bc − …` 10, `c₂ = b² + 2ac − …`
+    /// 11, `c₃ = 2ab` and `c₄ = a²` 7.
+    fn restriction_rounding_steps(&self) -> u32 {
+        12
+    }
+
+    /// `G(y) = (y·y + R² + r²)² + 4R²(y_x² + y_y²)`: the closed form on absolute values, summed
+    /// over `t` at `y = |o| + t|d|` (it expands to `Σ c̃ₘtᵐ` term by term), and at least the
+    /// torus polynomial with absolute-value coefficients. Six roundings on any path, and the
+    /// squares of sums one more each: inflated by `2γ(12)`.
+    fn restriction_abs(&self, y: DVec3) -> f64 {
+        let (r2, q2) = (self.major * self.major, self.minor * self.minor);
+        let s = y.length_squared() + r2 + q2;
+        (s * s + 4.0 * r2 * (y.x * y.x + y.y * y.y)) * (1.0 + 2.0 * crate::geometry::gamma(12))
+    }
+
+    /// `(|o + td|² + R² − r²)² − 4R²((o_x + td_x)² + (o_y + td_y)²)` over the rationals.
+    fn restrict_exact(&self, o: &[Rat; 3], d: &[Rat; 3]) -> QPoly {
+        let rat = |x: f64| poly::rat_from_f64(x).expect("finite radii");
+        let (r2, q2) = (
+            rat(self.major) * rat(self.major),
+            rat(self.minor) * rat(self.minor),
+        );
+        let line = |k: usize| QPoly::new(vec![o[k].clone(), d[k].clone()]);
+        let sq = |k: usize| &line(k) * &line(k);
+        let rho2 = &sq(0) + &sq(1);
+        let s = &(&rho2 + &sq(2)) + &QPoly::new(vec![&r2 - &q2]);
+        let m = QPoly::new(vec![Rat::from_integer(4.into()) * &r2]);
+        &(&s * &s) - &(&m * &rho2)
     }
 
     /// The factored form `F = s² − mρ²` with `s = |p|² + R² − r²`, `m = 4R²`,
