@@ -174,34 +174,14 @@ impl<'c> DdBernstein<'c> {
         let chain = chain_underflow_weight(c, e, wh, DD_MIN_EXACT);
         let tiny0 =
             2.0 * DD_UNDERFLOW * (zr + chain) * 2f64.powi(n as i32) * ((n + 1) * (n + 1)) as f64;
-        let (dh, dl) = two_sum(y, -x);
-        Some(DdBernstein {
-            c,
-            n,
-            x,
-            y,
-            s_x,
-            s_y,
-            d: Dd::from_pair(dh, dl),
-            mag,
-            k0: 4 * n + 1,
-            e0: 0.0,
-            tiny0,
-            level_tiny: 2.0 * n as f64 * DD_UNDERFLOW,
+        Some(Self::top(
+            (c, n),
+            (x, y),
+            (s_x, s_y),
+            (mag, 4 * n + 1, 0.0, tiny0),
             arena,
-            stack: SmallVec::from_elem(
-                Node {
-                    u0: 0.0,
-                    u1: 1.0,
-                    depth: 0,
-                    at: 0,
-                },
-                1,
-            ),
-            nodes: 0,
-            floor: (x, s_x),
             sign_at,
-        })
+        ))
     }
 
     /// The run on `(x, y]` from Bernstein coefficients computed elsewhere: `b` in order from
@@ -241,8 +221,28 @@ impl<'c> DdBernstein<'c> {
         if !mag.is_finite() {
             return None;
         }
+        Some(Self::top(
+            (c, n),
+            (x, y),
+            (s_x, s_y),
+            (mag, 0, e0, 0.0),
+            b,
+            sign_at,
+        ))
+    }
+
+    /// The run with its top node's coefficients in `arena`, and their bound's parts
+    /// `(M, k₀, e₀, underflow)` (see [`Self::bound`]).
+    fn top(
+        (c, n): (&'c [f64], usize),
+        (x, y): (f64, f64),
+        (s_x, s_y): (i8, i8),
+        (mag, k0, e0, tiny0): (f64, usize, f64, f64),
+        arena: SmallVec<[Dd; 64]>,
+        sign_at: fn(&[f64], f64) -> i8,
+    ) -> Self {
         let (dh, dl) = two_sum(y, -x);
-        Some(DdBernstein {
+        DdBernstein {
             c,
             n,
             x,
@@ -251,11 +251,11 @@ impl<'c> DdBernstein<'c> {
             s_y,
             d: Dd::from_pair(dh, dl),
             mag,
-            k0: 0,
+            k0,
             e0,
-            tiny0: 0.0,
+            tiny0,
             level_tiny: 2.0 * n as f64 * DD_UNDERFLOW,
-            arena: b,
+            arena,
             stack: SmallVec::from_elem(
                 Node {
                     u0: 0.0,
@@ -268,7 +268,7 @@ impl<'c> DdBernstein<'c> {
             nodes: 0,
             floor: (x, s_x),
             sign_at,
-        })
+        }
     }
 
     /// The bound on every coefficient of a node at `depth`.
