@@ -343,9 +343,14 @@ fn true_root_radius(coeffs: &[f64], slack: SlackFn<'_>) -> Option<f64> {
 /// have about `53·N` bits and its cost grows like `terms·N²` big-integer products: measured
 /// in release, tens of µs a Barth (degree 6) ray, but 0.17 s a ray of the degree-64
 /// `scenes/quartic-power64.scene` (153 terms), which made a 32 × 32 render take 46 s instead
-/// of 0.1 s. Above this degree such a ray is counted as undecided instead
-/// (`TraceStats::surface_certification`).
-pub const EXACT_RESTRICTION_MAX_DEGREE: u32 = 16;
+/// of 0.1 s; and about 0.9 ms a ray plus exact Sturm on a tenth of them for the degree-16
+/// `scenes/torus-sheets16.scene` (165 terms), where most hit rays need it because the
+/// renderer's depth tolerance is finer than the rounded restriction can certify: 9 s for
+/// 100 × 100 pixels, minutes at 840². 12 keeps the degree-12 powers of the tests and every
+/// classic scene (Barth, degree 6: 409 rays of 40 318 at 200², all decided by the second
+/// tier). Above this degree such a ray is counted as undecided instead
+/// (`TraceStats::surface_certification`) and answered for the rounded restriction.
+pub const EXACT_RESTRICTION_MAX_DEGREE: u32 = 12;
 
 /// `p(x) → p(−x)`: negates the odd coefficients (exact).
 fn reflect(coeffs: &mut [f64]) {
