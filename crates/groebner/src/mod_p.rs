@@ -33,17 +33,9 @@ fn from_f64(x: f64) -> u64 {
     if x == 0.0 {
         return 0;
     }
-    let bits = x.to_bits();
-    let biased = ((bits >> 52) & 0x7ff) as i32;
-    let fraction = bits & ((1 << 52) - 1);
-    // IEEE 754 binary64: x = (2⁵² + fraction)·2^(biased − 1075), subnormals fraction·2^−1074.
-    let (m, e) = if biased == 0 {
-        (fraction, -1074)
-    } else {
-        (fraction | (1 << 52), biased - 1075)
-    };
-    let r = mul(reduce(m), 1 << e.rem_euclid(31));
-    if x < 0.0 { sub(0, r) } else { r }
+    let (m, e) = poly::f64_dyadic(x);
+    let r = mul(reduce(m.unsigned_abs()), 1 << e.rem_euclid(31));
+    if m < 0 { sub(0, r) } else { r }
 }
 
 /// A dual number `a + b·ε` (`ε² = 0`) over the residues: a value and its derivative.

@@ -17,6 +17,7 @@ use num_bigint::{BigInt, Sign};
 use num_traits::{Signed, Zero};
 
 use crate::root_interval::RootInterval;
+use crate::scalar::{binary_exponent, f64_dyadic};
 use crate::stats::RootStats;
 
 /// Most Descartes tests spent counting the roots inside one interval whose ends are adjacent
@@ -43,17 +44,9 @@ impl Dyadic {
                 e: 0,
             };
         }
-        let bits = x.to_bits();
-        let exp = ((bits >> 52) & 0x7ff) as i64;
-        let frac = bits & ((1u64 << 52) - 1);
-        let (mant, e) = if exp == 0 {
-            (frac, -1074)
-        } else {
-            (frac | (1u64 << 52), exp - 1075)
-        };
-        let m = BigInt::from(mant);
+        let (m, e) = f64_dyadic(x);
         Dyadic {
-            m: if x < 0.0 { -m } else { m },
+            m: BigInt::from(m),
             e,
         }
     }
@@ -346,20 +339,7 @@ fn geometric_split(a: f64, b: f64) -> Option<f64> {
         return Some(0.0);
     }
     // Binade indices: floor(log2 |x|), with 0 below every subnormal.
-    let binade = |x: f64| -> i32 {
-        if x == 0.0 {
-            -1075
-        } else {
-            let bits = x.abs().to_bits();
-            let exp = ((bits >> 52) & 0x7ff) as i32;
-            if exp == 0 {
-                // Subnormal: 2^-1074 times the fraction.
-                -1074 + (63 - (bits & ((1u64 << 52) - 1)).leading_zeros() as i32)
-            } else {
-                exp - 1023
-            }
-        }
-    };
+    let binade = |x: f64| -> i32 { if x == 0.0 { -1075 } else { binary_exponent(x) } };
     let (la, lb) = (binade(a), binade(b));
     if la.abs_diff(lb) >= 2 {
         // Strictly between the binades: |a| < 2^{j} < |b| (or the reverse for negative

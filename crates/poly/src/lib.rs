@@ -92,7 +92,7 @@ pub use crate::query::{PolyRef, RootQuery};
 pub use crate::root_error::RootError;
 pub use crate::root_interval::RootInterval;
 pub use crate::root_options::{DEFAULT_X_TOL, IsolationMethod, RefineMethod, RootOptions};
-pub use crate::scalar::{F64_NEGLIGIBLE_REL, Rat, Scalar, rat_from_f64, rat_to_f64};
+pub use crate::scalar::{F64_NEGLIGIBLE_REL, Rat, Scalar, f64_dyadic, rat_from_f64, rat_to_f64};
 pub use crate::stam::StamSturm;
 pub use crate::stats::{RootStats, STATS_DEGREES};
 pub use crate::sturm::SturmSequence;

@@ -32,7 +32,7 @@ use crate::double_double::{DD_MIN_EXACT, DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, two
 use crate::eval_bound::{abs_weights, certified_sign, certified_value, chain_underflow_weight};
 use crate::refine::{IllinoisEnd, illinois_by};
 use crate::root_options::Tolerance;
-use crate::scalar::rat_from_f64;
+use crate::scalar::{binary_exponent, rat_from_f64};
 use crate::stats::RootStats;
 use crate::univariate::Poly;
 use num_traits::Zero;
@@ -168,19 +168,6 @@ struct BigArith {
 /// Precision that holds any sum of two `f64` numbers exactly: their exponents differ by at
 /// most `2098`, plus 53 bits of mantissa and a carry.
 const EXACT_PAIR_BITS: usize = 2176;
-
-/// The binary exponent `e` of a non-zero finite `x` (`2^e ≤ |x| < 2^(e+1)`), subnormals
-/// included.
-fn binary_exponent(x: f64) -> i32 {
-    let bits = x.abs().to_bits();
-    let biased = (bits >> 52) as i32;
-    if biased == 0 {
-        // Subnormal: the leading bit of the 52-bit fraction sets the exponent.
-        -1074 + (63 - bits.leading_zeros() as i32)
-    } else {
-        biased - 1023
-    }
-}
 
 /// Precision, in bits (a multiple of 64, at most [`EXACT_PAIR_BITS`]), that holds
 /// `hi + lo` exactly: from the carry above `hi`'s leading bit down to `lo`'s last bit,

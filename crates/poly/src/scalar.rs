@@ -83,6 +83,37 @@ impl Scalar for Rat {
     }
 }
 
+/// `x = m·2^e` exactly, for a finite `x`: the integer mantissa `m` (`|m| < 2⁵³`, signed, 0 for
+/// ±0) and the exponent `e` (`−1074` for subnormals and zero). The one decomposition of an
+/// `f64` into a dyadic rational, shared by the exact conversions here, the exact Descartes
+/// isolation, the renderer's exact restriction and the modular gcd.
+///
+/// # Examples
+/// ```
+/// assert_eq!(poly::f64_dyadic(-0.75), (-(3 << 51), -53));
+/// assert_eq!(poly::f64_dyadic(5e-324), (1, -1074));
+/// assert_eq!(poly::f64_dyadic(0.0), (0, -1074));
+/// ```
+pub fn f64_dyadic(x: f64) -> (i64, i64) {
+    debug_assert!(x.is_finite(), "a finite f64");
+    let bits = x.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i64;
+    let fraction = (bits & ((1u64 << 52) - 1)) as i64;
+    // IEEE 754 binary64: (2⁵² + fraction)·2^(biased − 1075), subnormals fraction·2^−1074.
+    let (m, e) = if biased == 0 {
+        (fraction, -1074)
+    } else {
+        (fraction | (1 << 52), biased - 1075)
+    };
+    (if bits >> 63 != 0 { -m } else { m }, e)
+}
+
+/// `⌊log₂|x|⌋` of a finite non-zero `x`, subnormals included (`−1074` for the smallest).
+pub(crate) fn binary_exponent(x: f64) -> i32 {
+    let (m, e) = f64_dyadic(x);
+    e as i32 + (63 - m.unsigned_abs().leading_zeros() as i32)
+}
+
 /// The exact rational value of a finite `f64` (`None` for NaN or ±infinity).
 ///
 /// # Exactness
@@ -103,16 +134,8 @@ pub fn rat_from_f64(x: f64) -> Option<Rat> {
     if x == 0.0 {
         return Some(Rat::zero());
     }
-    let bits = x.to_bits();
-    let negative = bits >> 63 != 0;
-    let exp_bits = ((bits >> 52) & 0x7ff) as i64;
-    let frac = bits & ((1u64 << 52) - 1);
-    // Subnormals have an implicit leading 0 and the minimum exponent.
-    let (mantissa, exponent) = if exp_bits == 0 {
-        (frac, -1074)
-    } else {
-        (frac | (1u64 << 52), exp_bits - 1075)
-    };
+    let (signed, exponent) = f64_dyadic(x);
+    let (negative, mantissa) = (signed < 0, signed.unsigned_abs());
     // An odd mantissa over a power of two is already in lowest terms: no gcd needed (this
     // conversion runs at every point where an exact Sturm sequence is evaluated).
     let tz = mantissa.trailing_zeros();

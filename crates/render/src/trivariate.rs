@@ -607,17 +607,10 @@ pub(crate) fn exact_point(origin: f64, dir: f64, t: f64) -> Rat {
     dyadic((mo << (eo - e) as usize) + (mp << (ep - e) as usize), e)
 }
 
-/// `x = m·2^e` exactly, `m` an integer (finite `x`).
+/// `x = m·2^e` exactly, `m` an integer (finite `x`; [`poly::f64_dyadic`]).
 fn f64_mantissa_exp(x: f64) -> (BigInt, i64) {
-    let bits = x.to_bits();
-    let exp = ((bits >> 52) & 0x7ff) as i64;
-    let frac = (bits & ((1u64 << 52) - 1)) as i64;
-    let (m, e) = if exp == 0 {
-        (frac, -1074)
-    } else {
-        (frac | (1i64 << 52), exp - 1075)
-    };
-    (BigInt::from(if x < 0.0 { -m } else { m }), e)
+    let (m, e) = poly::f64_dyadic(x);
+    (BigInt::from(m), e)
 }
 
 /// Partial degrees below this use stack power tables in [`Poly3::eval_grad`] (higher ones a
