@@ -132,6 +132,17 @@ impl Poly3 {
         d
     }
 
+    /// The highest degree in `t` that `F(o + t·d)` can have for any `o` and any `d` whose
+    /// non-zero components are those flagged in `moving`: each term `x^i y^j z^k` contributes
+    /// the exponents of its moving axes (an axis with `d_k = 0` contributes a constant).
+    pub fn restriction_degree_bound(&self, moving: [bool; 3]) -> u32 {
+        self.terms
+            .iter()
+            .map(|t| (0..3).filter(|&k| moving[k]).map(|k| t.exps[k]).sum())
+            .max()
+            .unwrap_or(0)
+    }
+
     /// `self^k` by repeated squaring (`self^0 = 1`).
     pub fn pow(&self, k: u32) -> Self {
         self.checked_pow(k, usize::MAX)
@@ -462,6 +473,29 @@ impl Poly3 {
             x_sum += i + 1;
         }
         2 * self.degree() + 3 + z_max + y_max + x_sum
+    }
+
+    /// `C` of the restriction's underflow term: `Σₘ |ĉₘ − cₘ|·Rᵐ` exceeds Higham's relative
+    /// bound `γ(K)·G` by at most `C·(1 + R + Y)^N` (`Y` the largest component of
+    /// `|o| + R|d|`), covering every product of [`Poly3::restrict_into`] (and of
+    /// [`Poly3::eval_abs_upper`], and of the restriction point `o + t0·d`) that lands in the
+    /// subnormal range, where a rounding errs by up to `η = 2⁻¹⁰⁷⁴` absolutely, not
+    /// relatively (`paper-notes/implicit-surfaces.md` §6, underflow).
+    ///
+    /// Each such error is carried to the output by later products with power-row entries
+    /// (`≤ (|o_k| + R|d_k|)^e`), with a coefficient (`≤ A = max|a|`) and with the row's own
+    /// power of `t` (`≤ Rᵐ`), and summed over at most `T` terms: at most
+    /// `max(1, A)·T·(1 + R + Y)^N` in the `R`-weighted sum. The products number at most
+    /// `P = (N + 1)(N + 2)(3 + 3T)` (power tables `3(N + 1)(N + 2)`, the `a·z`, `y·z` and
+    /// `x·y` products `≤ T(N + 1) + 2T(N + 1)²`), plus `N` for the restriction point's three
+    /// roundings as seen through a degree-`N` polynomial; the factor 4 covers the later
+    /// relative roundings of each error (`(1 + u)^K ≤ 2`) and the rounding of the power.
+    pub fn restriction_underflow_weight(&self) -> f64 {
+        let n = f64::from(self.degree());
+        let t = self.terms.len() as f64;
+        let a = self.terms.iter().fold(1.0f64, |m, t| m.max(t.coeff.abs()));
+        let products = (n + 1.0) * (n + 2.0) * (3.0 + 3.0 * t) + n;
+        4.0 * f64::from_bits(1) * products * t * a
     }
 
     /// An upper bound on `F_abs(y) = Σ|a_ijk| y_x^i y_y^j y_z^k` for `y ≥ 0` componentwise:

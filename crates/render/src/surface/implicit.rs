@@ -74,6 +74,15 @@ pub trait ImplicitFn: Send + Sync + std::fmt::Debug {
         self.poly().eval_abs_upper(y)
     }
 
+    /// `C` such that the underflowing roundings of [`ImplicitFn::restrict`] (and of
+    /// [`ImplicitFn::restriction_abs`]) add at most `C·(1 + R + Y)^N` to the slack at radius
+    /// `R`, `Y` the largest component of `|o| + R|d|`: the default is that of
+    /// [`Poly3::restrict_into`] ([`Poly3::restriction_underflow_weight`]); a shape with its own
+    /// closed form overrides it with a bound for that program.
+    fn restriction_underflow_weight(&self) -> f64 {
+        self.poly().restriction_underflow_weight()
+    }
+
     /// `t ↦ F(o + t·d)` in exact rational arithmetic for the surface as written (its `f64`
     /// data taken exactly); the default expands [`ImplicitFn::poly`]
     /// ([`Poly3::restrict_exact`]).
@@ -121,6 +130,12 @@ pub struct Implicit<F> {
     rounding_steps: u32,
     /// The relative factor of the restriction's slack ([`slack_rel`]).
     slack_rel: f64,
+    /// The restriction's underflow weight ([`ImplicitFn::restriction_underflow_weight`]).
+    underflow_weight: f64,
+    /// The highest degree in `t` of a restriction along a direction whose non-zero
+    /// components are flagged by the bits of the index (x: 1, y: 2, z: 4)
+    /// ([`Poly3::restriction_degree_bound`]; [`Implicit::dropped_degree`]).
+    ray_degree: [u32; 8],
 }
 
 impl<F: ImplicitFn> Implicit<F> {
@@ -137,6 +152,11 @@ impl<F: ImplicitFn> Implicit<F> {
         let rounding_steps = f.restriction_rounding_steps();
         Implicit {
             slack_rel: slack_rel(rounding_steps, degree),
+            underflow_weight: f.restriction_underflow_weight(),
+            ray_degree: std::array::from_fn(|bits| {
+                f.poly()
+                    .restriction_degree_bound([bits & 1 != 0, bits & 2 != 0, bits & 4 != 0])
+            }),
             f,
             weights,
             rounding_steps,
@@ -168,6 +188,19 @@ impl<F: ImplicitFn> Implicit<F> {
     /// The wrapped function.
     pub fn function(&self) -> &F {
         &self.f
+    }
+
+    /// True when the rounded restriction in `coeffs` has a lower degree than the exact one
+    /// may have along `d` (its top coefficients rounded, underflowed or cancelled to zero).
+    /// The value slack then certifies nothing: `poly` reads a Bernstein coefficient of the
+    /// difference as a blossom of the *stored* degree (`paper-notes/implicit-surfaces.md` §6),
+    /// which a difference of higher degree does not have. Exact zeros along an axis with
+    /// `d_k = 0` are not a drop: no power of `t` comes from that axis.
+    fn dropped_degree(&self, coeffs: &[f64], d: DVec3) -> bool {
+        let bits =
+            usize::from(d.x != 0.0) | usize::from(d.y != 0.0) << 1 | usize::from(d.z != 0.0) << 2;
+        let stored = coeffs.iter().rposition(|&c| c != 0.0).unwrap_or(0);
+        (stored as u32) < self.ray_degree[bits]
     }
 
     /// Whether rays are certified against the surface as written (§6): degrees 1–2 keep their
@@ -318,9 +351,38 @@ fn slack_rel(steps: u32, degree: u32) -> f64 {
 ///
 /// So `slack(R) = slack_rel·G(Y)` ([`slack_rel`]); `o_abs` is `|o|·(1 + ε) ≥ |o| + o_err`, and
 /// the factors `(1 + 2ε)`, `(1 + 4ε)` cover the roundings of `Y` and of the product.
-fn restriction_slack<F: ImplicitFn>(f: &F, rel: f64, o_abs: DVec3, d_abs: DVec3, r: f64) -> f64 {
-    let y = (o_abs + d_abs * r) * (1.0 + 2.0 * f64::EPSILON);
-    rel * f.restriction_abs(y) * (1.0 + 4.0 * f64::EPSILON)
+///
+/// Both parts assume no rounding underflows. Those that do err by up to `η` absolutely, which
+/// the standard model does not bound (a direction component near `1e-27` makes `d_x¹²` of a
+/// degree-12 surface subnormal or zero); the absolute term `C·(1 + R + Y_max)^N`
+/// ([`ImplicitFn::restriction_underflow_weight`]) covers them, far below the relative part
+/// unless the polynomial's own values are near the underflow threshold.
+fn restriction_slack<F: ImplicitFn>(f: &F, s: &RestrictionSlack, r: f64) -> f64 {
+    let y = (s.o_abs + s.d_abs * r) * (1.0 + 2.0 * f64::EPSILON);
+    // Repeated squaring written out: `powi` is a library call, and this runs twice a query.
+    let (mut under, mut base, mut e) = (s.underflow_weight, 1.0 + r + y.max_element(), s.degree);
+    while e > 0 {
+        if e & 1 == 1 {
+            under *= base;
+        }
+        base *= base;
+        e >>= 1;
+    }
+    (s.rel * f.restriction_abs(y) + under) * (1.0 + 4.0 * f64::EPSILON)
+}
+
+/// The per-ray data of [`restriction_slack`].
+struct RestrictionSlack {
+    /// [`slack_rel`] of the surface.
+    rel: f64,
+    /// [`ImplicitFn::restriction_underflow_weight`] of the surface.
+    underflow_weight: f64,
+    /// The surface's total degree `N`.
+    degree: u32,
+    /// `|o|·(1 + ε)`, at least `|o|` plus the rounding of the restriction point.
+    o_abs: DVec3,
+    /// `|d|`.
+    d_abs: DVec3,
 }
 
 /// A radius `T` such that every root of *every* polynomial within `slack` of `coeffs` lies in
@@ -523,8 +585,14 @@ impl<F: ImplicitFn> Implicit<F> {
             return Some((t0 + s, o + ray.dir * s));
         }
         // `o` = fl(origin + dir·t0), one rounding: within u·|o| of the exact point.
-        let (o_abs, d_abs) = (o.abs() * (1.0 + f64::EPSILON), ray.dir.abs());
-        let slack = |r: f64| restriction_slack(&self.f, self.slack_rel, o_abs, d_abs, r);
+        let data = RestrictionSlack {
+            rel: self.slack_rel,
+            underflow_weight: self.underflow_weight,
+            degree: self.degree,
+            o_abs: o.abs() * (1.0 + f64::EPSILON),
+            d_abs: ray.dir.abs(),
+        };
+        let slack = |r: f64| restriction_slack(&self.f, &data, r);
         let (mut lo, mut hi) = (lo, hi);
         let mut answer = Err(RootError::SlackLimited { lo, hi });
         if !(lo.is_finite() && hi.is_finite()) {
@@ -533,7 +601,7 @@ impl<F: ImplicitFn> Implicit<F> {
                 (lo, hi) = (lo.max(-t), hi.min(t));
             }
         }
-        if lo.is_finite() && hi.is_finite() {
+        if lo.is_finite() && hi.is_finite() && !self.dropped_degree(&ws.coeffs, ray.dir) {
             answer = if centred {
                 smallest_root_split(ws, lo, hi, &opts, Some(&slack))
             } else {
@@ -587,7 +655,9 @@ impl<F: ImplicitFn> Implicit<F> {
         ws.coeffs.clear();
         ws.coeffs
             .extend(exact.coeffs().iter().map(poly::rat_to_f64));
-        if ws.coeffs.iter().any(|c| !c.is_finite()) {
+        // A top coefficient below the subnormals rounds to 0: the degree drops, and with it
+        // the blossom argument of the slack (see `dropped_degree`).
+        if ws.coeffs.iter().any(|c| !c.is_finite()) || ws.coeffs.last() == Some(&0.0) {
             return None;
         }
         let abs: Vec<f64> = ws.coeffs.iter().map(|c| c.abs()).collect();
@@ -724,7 +794,7 @@ pub(crate) fn gradient_normal(e: Eval3, degree: u32) -> Option<(Option<DVec3>, D
 mod tests {
     use super::*;
     use crate::surface::{Algebraic, Plane, Sphere};
-    use crate::trivariate::Poly3;
+    use crate::trivariate::{Poly3, RestrictScratch};
     use poly::IsolationMethod;
 
     /// `n × n` rays from `eye` through a square of half-width `half` about the origin, in
@@ -766,6 +836,82 @@ mod tests {
             (0, 0),
             "decided in f64: {roots:?}"
         );
+    }
+
+    /// Issue 11 (underflow of the restriction): along a direction with `d_x = 8.3e-28`, the
+    /// restriction of `x¹² − 10⁻¹⁸` at `x = 0` has the leading coefficient `d_x¹² ≈ 1e-325`,
+    /// which underflows to 0: the rounded ray polynomial was the constant `−10⁻¹⁸`, and the
+    /// ray missed the sheet `x = 10^-1.5` (at `t ≈ 3.8e25`), certified. A restriction whose
+    /// degree dropped below the one its direction allows is not certified from the rounded
+    /// polynomial (`Implicit::dropped_degree`): it is restricted exactly (degree 12) and hits.
+    #[test]
+    fn r11_restriction_whose_degree_underflowed_is_not_certified_from_it() {
+        let eps = 1e-18;
+        let f = &Poly3::x().pow(12) - &Poly3::constant(eps);
+        let surface = Implicit::new(Algebraic::new(f), None);
+        let mut ws = Workspace::new();
+        // `d_x¹²` is below half the smallest subnormal.
+        let d_x = 8.3e-28;
+        let ray = Ray::new(DVec3::new(0.0, -5.0, 0.0), DVec3::new(d_x, 1.0, 0.0));
+        assert_eq!(ray.dir.x, d_x, "the direction is already of unit length");
+        let want = eps.powf(1.0 / 12.0) / d_x;
+        let hit = surface
+            .intersect(&ray, 0.0..2.0 * want, &mut ws)
+            .expect("the ray crosses x = ε^(1/12)");
+        assert!(
+            (hit.t - want).abs() <= DEPTH_REL * want,
+            "t {} vs {want}: {:?}",
+            hit.t,
+            ws.stats.surface_certification
+        );
+        assert!(
+            ws.stats.surface_certification.exact_restrictions > 0,
+            "decided by the exact restriction: {:?}",
+            ws.stats.surface_certification
+        );
+    }
+
+    /// Issue 11 (underflow of the restriction): the slack bounds `Σₘ |cₘ − ĉₘ|·Rᵐ` also where
+    /// a product of the restriction lands in the subnormal range. Along `d_x ≈ 3.2e-27` the
+    /// leading coefficient of `x¹² − 10⁻¹⁸`, `d_x¹² ≈ 1e-318`, is off by 2.4e-6 relative,
+    /// which Higham's relative term (`γ(K)·G ≈ 1e-14·G`) alone does not cover.
+    #[test]
+    fn r11_restriction_slack_covers_underflowing_products() {
+        let f = Algebraic::new(&Poly3::x().pow(12) - &Poly3::constant(1e-18));
+        let (o, d) = (
+            DVec3::new(0.0, -5.0, 0.0),
+            DVec3::new(3.1654399378285475e-27, 1.0, 0.0),
+        );
+        let mut coeffs = Vec::new();
+        f.restrict(o, d, &mut RestrictScratch::default(), &mut coeffs);
+        let rat = |x: f64| poly::rat_from_f64(x).expect("finite");
+        let exact = f.restrict_exact(&o.to_array().map(rat), &d.to_array().map(rat));
+        let surface = Implicit::new(f, None);
+        let data = RestrictionSlack {
+            rel: surface.slack_rel,
+            underflow_weight: surface.underflow_weight,
+            degree: surface.degree,
+            o_abs: o.abs() * (1.0 + f64::EPSILON),
+            d_abs: d.abs(),
+        };
+        for r in [1.0f64, 1e10, 1e25, 1e26] {
+            let err: f64 = exact
+                .coeffs()
+                .iter()
+                .enumerate()
+                .map(|(m, c)| {
+                    let stored = coeffs.get(m).copied().unwrap_or(0.0);
+                    let weight = num_traits::pow(rat(r), m);
+                    poly::rat_to_f64(&((c - rat(stored)) * weight)).abs()
+                })
+                .sum();
+            let slack = restriction_slack(&surface.f, &data, r);
+            assert!(err <= slack, "R = {r:e}: error {err:e} > slack {slack:e}");
+            assert!(
+                r < 1e10 || err > 0.0,
+                "the rounding is not exact: {coeffs:?}"
+            );
+        }
     }
 
     /// Issue 11: a degree-64 surface, `g^16 − 2^-16` with the well-conditioned quartic

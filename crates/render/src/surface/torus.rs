@@ -108,6 +108,18 @@ impl ImplicitFn for Torus {
         (s * s + 4.0 * r2 * (y.x * y.x + y.y * y.y)) * (1.0 + 2.0 * crate::geometry::gamma(12))
     }
 
+    /// `C` of the closed form's underflowing roundings (see
+    /// [`Poly3::restriction_underflow_weight`] for the general program): it has fewer than 40
+    /// products (`a`, `b`, `c`, `m` and the five coefficients), and an error of `η` in one is
+    /// carried to the `R`-weighted output by at most two more factors among `a`, `b`, `c`,
+    /// `m = 4R²` and 2, each at most `2·max(1, 4R²)·(1 + R² + r²)·(1 + R + Y)²`, with the
+    /// powers of `t` inside `(1 + R + Y)⁴`. The 4 covers the later relative roundings.
+    fn restriction_underflow_weight(&self) -> f64 {
+        let (r2, q2) = (self.major * self.major, self.minor * self.minor);
+        let factor = 2.0 * (4.0 * r2).max(1.0) * (1.0 + r2 + q2);
+        4.0 * f64::from_bits(1) * 40.0 * factor * factor
+    }
+
     /// `(|o + td|² + R² − r²)² − 4R²((o_x + td_x)² + (o_y + td_y)²)` over the rationals.
     fn restrict_exact(&self, o: &[Rat; 3], d: &[Rat; 3]) -> QPoly {
         let rat = |x: f64| poly::rat_from_f64(x).expect("finite radii");
