@@ -712,6 +712,62 @@ fn no_root_by_descartes(c: &[f64], lo: f64, hi: f64, slack: f64) -> bool {
     }
 }
 
+/// How many radii [`no_root_past_start`] tries for the slack of each shifted coefficient:
+/// `T = (hi − lo)·4⁻ʲ`, `j < 12`, a span of 4¹¹ ≈ 4·10⁶ (the slack is asked once per radius,
+/// and only while some coefficient is undecided).
+const PAST_START_RADII: usize = 12;
+
+/// Descartes' rule at the range's start: with `lo ≥ 0`, the sign `s` of the true `p(lo)`
+/// certified, and every stored coefficient `cₖ`, `k ≥ 1`, of that sign, the true `p(lo + t)`
+/// has only coefficients of sign `s` — so no root in `(lo, ∞)`.
+///
+/// Why: the stored `qₖ = Σ_{j≥k} C(j, k)·cⱼ·lo^(j−k)` of `p(lo + t)` sum terms of one sign,
+/// so `|qₖ| ≥ |cₖ|`, exactly (nothing is computed); the true ones differ by `Δqₖ`, the shift
+/// of the slack's `Δc`, with `Σ|Δqₖ|Tᵏ ≤ Σ|Δcₖ|(lo + T)ᵏ ≤ slack(lo + T)` for *every*
+/// `T > 0`, so `|Δqₖ| ≤ slack(lo + T)/Tᵏ` at the `T` of our choice, one per coefficient; and
+/// `q₀ = p(lo)`. (The slack's contract includes that the true polynomial has no higher degree
+/// than the stored one.) This decides the shadow rays leaving a high-degree surface, where
+/// `c₀ = p(start)` is within the slack of zero and [`no_root_by_descartes`] says nothing: a
+/// ray leaving the plane `x = 1` of `x³² − 1` meets `(1 + d·s)³² − 1 + δ`, and its search over
+/// `(lo, 4B]` took a dozen Bernstein runs of degree 32 (issue 11, `docs/speed.md`).
+fn no_root_past_start(c: &[f64], lo: f64, hi: f64, s_lo: i8, slack: Slack<'_>) -> bool {
+    if !(lo >= 0.0 && s_lo != 0 && lo < hi) || c.len() < 2 {
+        return false;
+    }
+    let same = |x: f64| if s_lo > 0 { x > 0.0 } else { x < 0.0 };
+    if !c[1..].iter().all(|&x| same(x)) {
+        return false;
+    }
+    if !slack.is_some() {
+        return true;
+    }
+    // Bit k set: coefficient k shown to keep its sign. Degrees above 63 are not tried.
+    let n = c.len() - 1;
+    if n > 63 {
+        return false;
+    }
+    let all = (u64::MAX >> (63 - n)) & !1;
+    let mut decided = 0u64;
+    let mut t = hi - lo;
+    for _ in 0..PAST_START_RADII {
+        let s = slack.at(lo + t);
+        let mut t_k = 1.0f64;
+        for (k, &ck) in c.iter().enumerate().skip(1) {
+            t_k *= t;
+            // |cₖ|·Tᵏ with k + 1 roundings, taken down by (1 − 2(k + 2)ε).
+            let low = ck.abs() * t_k * (1.0 - 2.0 * (k + 2) as f64 * f64::EPSILON);
+            if low > s {
+                decided |= 1 << k;
+            }
+        }
+        if decided == all {
+            return true;
+        }
+        t *= 0.25;
+    }
+    false
+}
+
 /// Whether a value slack can apply to a query on `(lo, hi]`: not with an infinite end (no
 /// finite radius bounds the difference), nor with the methods that certify only the stored
 /// coefficients (exact) or nothing (the Sturm heuristics). Such queries are refused as
@@ -752,6 +808,9 @@ fn certified_smallest(
         return Ok(exact_smallest(p, lo, hi, opts.tolerance(), stats));
     }
     let signs = end_signs(c, lo, hi, slack, range_slack);
+    if no_root_past_start(c, lo, hi, signs.0, slack) {
+        return Ok(None);
+    }
     if hi - lo <= opts.tolerance().on(lo, hi) && signs.0 * signs.1 < 0 {
         // Every point of the interval is within x_tol of any root in it, and opposite end
         // signs prove one: no isolation needed (a shadow ray's "is anything in the way").
@@ -1423,6 +1482,44 @@ mod tests {
             p.smallest_root(0.0, 20.0, 1e-12).is_some(),
             "one sign change: a root"
         );
+    }
+
+    #[test]
+    fn shadow_ray_off_a_high_degree_plane_is_decided_with_a_value_slack() {
+        // Issue 11 (x^32 − 1 at 15× Barth's cost a pixel once its restriction was certified):
+        // the renderer's shadow ray leaving x = 1 meets (1 + s/2)^32 − 1 + δ with a slack
+        // growing like γ·(1 + r/2)^32, and the stored c₀ = δ is within it, so Descartes' rule
+        // on the stored signs says nothing and the Bernstein runs over (lo, 20] subdivided.
+        // With the sign of p(lo) in place of c₀ and a radius of its own for each coefficient's
+        // slack, no search is needed.
+        let mut c = vec![0.0; 33];
+        let mut binom = 1.0;
+        for (k, ck) in c.iter_mut().enumerate() {
+            *ck = binom * 0.5f64.powi(k as i32);
+            binom = binom * (32 - k) as f64 / (k + 1) as f64;
+        }
+        c[0] = -1e-15; // δ, within the slack of 0
+        let slack = |r: f64| 1e-13 * (1.0 + 0.5 * r).powi(32);
+        let p = Poly::new(c.clone());
+        let o = RootOptions::new(1e-12);
+        let lo = 1e-8; // p(lo) ≈ 16·lo, beyond the slack there (the spawn offset)
+        let mut stats = RootStats::default();
+        let r = p
+            .roots(lo, 20.0, &o)
+            .value_slack(&slack)
+            .stats(&mut stats)
+            .smallest();
+        assert_eq!(r, Ok(None));
+        assert_eq!(
+            stats.subdivisions, 0,
+            "decided without isolating: {stats:?}"
+        );
+        // A coefficient the slack may flip is not read: 1e-12 + 1e-20·t + 1e-20·t² may be
+        // 1e-12 − 4e-14·t + … within a slack of 1e-14·(1 + r)², a root near t = 25.
+        let q = Poly::new(vec![1e-12, 1e-20, 1e-20]);
+        let slack = |r: f64| 1e-14 * (1.0 + r) * (1.0 + r);
+        let r = q.roots(0.0, 100.0, &o).value_slack(&slack).smallest();
+        assert!(matches!(r, Err(RootError::SlackLimited { .. })), "{r:?}");
     }
 
     #[test]

@@ -27,6 +27,7 @@ use std::thread::LocalKey;
 use crate::root_error::RootError;
 use crate::root_interval::RootInterval;
 use crate::root_options::RootOptions;
+use crate::scalar::binary_exponent;
 use crate::stats::RootStats;
 use crate::univariate::{Poly, root_bound_of};
 
@@ -78,6 +79,56 @@ impl<'a> PolyRef<'a> {
     /// [`Poly::root_bound`] of the viewed polynomial, without copying it.
     pub fn root_bound(&self) -> Option<f64> {
         root_bound_of(self.coeffs)
+    }
+
+    /// A radius `T` such that every root of *every* polynomial within `slack` of this one lies
+    /// in `(−T, T)` (`slack` as in [`RootQuery::value_slack`]: `slack(R) ≥ Σₖ|Δcₖ|Rᵏ`, and the
+    /// true polynomial of degree at most this one's), or `None` when no radius up to about
+    /// eight times the root bound can be shown (a zero or constant polynomial, an overflow, or
+    /// a slack too wide).
+    ///
+    /// # Accuracy
+    /// `T` passes Cauchy's test with the slack, `|c_N|Tᴺ > Σ_{k<N}|cₖ|Tᵏ + slack(T)`, each side
+    /// rounded the safe way. For `|s| ≥ T`, `|p_true(s)| ≥ |s|ᴺ(|c_N| − Σ_{k<N}|cₖ||s|^(k−N) −
+    /// slack(|s|)/|s|ᴺ)`, and every subtracted term is non-increasing in `|s|` (so is
+    /// `slack(R)/Rᴺ` for the sum `Σ|Δcₖ|Rᵏ` of degree `≤ N`): positive at `T`, positive beyond.
+    /// The candidates are `T₀·2^(i/4)`, `i = −8 … 12`, from the power-of-two majorant `T₀` of
+    /// Fujiwara's bound; the first to pass is returned, so `T` is within `2^(1/4)` of the
+    /// smallest radius the test can show on that grid. (The former radius, four times
+    /// Fujiwara's bound, made the certified search of `x³² − 1`'s rays run over 8/|d|
+    /// where the roots are at 1/|d|: `4³²` times the rounding, a dozen Bernstein runs a ray.)
+    pub fn root_radius_within(&self, slack: &dyn Fn(f64) -> f64) -> Option<f64> {
+        let c = self.coeffs;
+        let n = self.degree();
+        if n == 0 || !c.iter().all(|x| x.is_finite()) {
+            return None;
+        }
+        let lead = c[n].abs();
+        // |x| < 2^e(x); Fujiwara: every root is below 2·maxₖ |cₖ/c_N|^(1/(N−k)) ≤ 2^(1 + s0).
+        let e_n = binary_exponent(lead);
+        let s0 = c[..n]
+            .iter()
+            .enumerate()
+            .filter(|(_, x)| **x != 0.0)
+            .map(|(k, &x)| {
+                let span = (binary_exponent(x) + 1 - e_n) as f64;
+                (span / (n - k) as f64).ceil() as i32
+            })
+            .max()?;
+        let t0 = 2f64.powi(s0 + 1);
+        // Relative rounding of n products and sums, doubled, on each side of the test.
+        let margin = 2.0 * (n + 2) as f64 * f64::EPSILON;
+        (-8..=12)
+            .map(|i| t0 * 2f64.powf(f64::from(i) / 4.0))
+            .find(|&t| {
+                let (mut rest, mut t_k) = (0.0f64, 1.0f64);
+                for &ck in &c[..n] {
+                    rest += ck.abs() * t_k;
+                    t_k *= t;
+                }
+                let lhs = lead * t_k * (1.0 - margin);
+                t.is_finite() && lhs > rest * (1.0 + margin) + slack(t)
+            })
     }
 
     /// A root query on `(lo, hi]` with `opts` and no statistics (see [`RootQuery`]).
@@ -238,8 +289,10 @@ impl<'p, 's> RootQuery<'p, 's> {
     /// Certifies the answer for every polynomial within `slack` of the stored one, instead
     /// of for the stored coefficients alone: `slack(R)` must bound `Σₖ |Δcₖ|·Rᵏ` for the
     /// differences `Δcₖ` between the true coefficients and the stored ones, for every `R ≥ 0`,
-    /// and be non-decreasing in `R`. A ray tracer that computed the coefficients in floating
-    /// point passes its bound on their rounding here.
+    /// and be non-decreasing in `R`; the true polynomial must not have a higher degree than
+    /// the stored one (a Bernstein coefficient of the difference is read as a blossom of the
+    /// stored degree). A ray tracer that computed the coefficients in floating point passes
+    /// its bound on their rounding here.
     ///
     /// # Accuracy
     /// Every sign the certified path uses — Bernstein coefficients on each sub-interval

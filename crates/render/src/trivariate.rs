@@ -681,16 +681,19 @@ fn row(table: &[f64], e: u32) -> &[f64] {
 
 /// Rows `(o + d·t)^e` for `e = 0..=max`, flat, row `e` at offset `e(e+1)/2`, low → high.
 fn linear_powers(o: f64, d: f64, max: usize, table: &mut Vec<f64>) {
-    table.clear();
-    table.push(1.0);
+    // Every entry is written below: only a change of size touches the memory.
+    table.resize((max + 1) * (max + 2) / 2, 0.0);
+    table[0] = 1.0;
     for e in 1..=max {
-        let prev = (e - 1) * e / 2;
-        // (o + d t)·row_{e−1}: c_m = o·p_m + d·p_{m−1}.
-        for m in 0..=e {
-            let pm = if m < e { table[prev + m] } else { 0.0 };
-            let pm1 = if m > 0 { table[prev + m - 1] } else { 0.0 };
-            table.push(o * pm + d * pm1);
+        // (o + d t)·row_{e−1}: c_m = o·p_m + d·p_{m−1}, with p_{−1} = p_e = 0 written into the
+        // same expression (`o·0 + d·p` is not simplified: the values are those of one formula).
+        let (done, rest) = table.split_at_mut(e * (e + 1) / 2);
+        let (prev, cur) = (&done[(e - 1) * e / 2..], &mut rest[..=e]);
+        cur[0] = o * prev[0] + d * 0.0;
+        for (c, w) in cur[1..e].iter_mut().zip(prev[..e].windows(2)) {
+            *c = o * w[1] + d * w[0];
         }
+        cur[e] = o * 0.0 + d * prev[e - 1];
     }
 }
 

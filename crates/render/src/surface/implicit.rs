@@ -270,7 +270,7 @@ fn certified_smallest(
 ///   10¹², where the polynomial overflows, so its end sign could not be certified and the query
 ///   fell to exact rational isolation; a far finite `lo` (the eye) is kept as it is. With a
 ///   value slack the caller has already cut the range to a bound valid for the true
-///   polynomial ([`true_root_radius`]), and `B` (the stored polynomial's) is not used.
+///   polynomial ([`PolyRef::root_radius_within`]), and `B` (the stored polynomial's) is not used.
 /// - The range is split at the expansion point `s = 0` into `(0, hi]` and, reflected
 ///   (`u = −s`, odd coefficients negated, exactly), `[0, −lo)`. `poly`'s certified run bounds
 ///   its rounding by `γ·Σ|c_i|(|a| + w)^i` for a run on `[a, a + w]`; on `[−B, B]` that is
@@ -287,9 +287,11 @@ fn smallest_root_split(
     opts: &RootOptions,
     slack: Option<SlackFn<'_>>,
 ) -> Result<Option<f64>, RootError> {
-    let (lo, hi) = match (slack, PolyRef::new(&ws.coeffs).root_bound()) {
-        (None, Some(b)) => (lo.max((-b).next_down()), hi.min(b)),
-        _ => (lo, hi),
+    // (The bound is Fujiwara's, `n` powers: asked only when it is used.)
+    let bound = || PolyRef::new(&ws.coeffs).root_bound();
+    let (lo, hi) = match slack.is_none().then(bound).flatten() {
+        Some(b) => (lo.max((-b).next_down()), hi.min(b)),
+        None => (lo, hi),
     };
     if lo < 0.0 {
         reflect(&mut ws.coeffs);
@@ -383,21 +385,6 @@ struct RestrictionSlack {
     o_abs: DVec3,
     /// `|d|`.
     d_abs: DVec3,
-}
-
-/// A radius `T` such that every root of *every* polynomial within `slack` of `coeffs` lies in
-/// `(−T, T)`, or `None` when one cannot be shown that way (then the ray takes the exact path).
-///
-/// With `B` ≥ `maxₖ (|cₖ|/|c_N|)^(1/(N−k))` (`poly`'s root bound is at least that) and
-/// `T = 4B`, for `|s| ≥ T` the stored polynomial has `|p(s)| ≥ (1 − Σⱼ 4⁻ʲ)|c_N||s|^N ≥
-/// ⅔|c_N||s|^N`, while the difference is at most `(|s|/T)^N·slack(T)`. So `½|c_N|T^N >
-/// slack(T)` (the half covers the rounding of `T^N`) rules out a true root there.
-fn true_root_radius(coeffs: &[f64], slack: SlackFn<'_>) -> Option<f64> {
-    let p = PolyRef::new(coeffs);
-    let t = 4.0 * p.root_bound()?;
-    let lead = p.coeffs().last()?.abs();
-    let lead_t_n = (0..p.degree()).fold(lead, |v, _| v * t);
-    (t.is_finite() && 0.5 * lead_t_n > slack(t)).then_some(t)
 }
 
 /// Degree up to which a ray whose rounded restriction cannot be certified is restricted in
@@ -597,7 +584,7 @@ impl<F: ImplicitFn> Implicit<F> {
         let mut answer = Err(RootError::SlackLimited { lo, hi });
         if !(lo.is_finite() && hi.is_finite()) {
             // An unbounded surface: cut the range where no true root can lie.
-            if let Some(t) = true_root_radius(&ws.coeffs, &slack) {
+            if let Some(t) = PolyRef::new(&ws.coeffs).root_radius_within(&slack) {
                 (lo, hi) = (lo.max(-t), hi.min(t));
             }
         }
@@ -674,7 +661,7 @@ impl<F: ImplicitFn> Implicit<F> {
         };
         let (mut lo, mut hi) = (lo, hi);
         if !(lo.is_finite() && hi.is_finite()) {
-            let t = true_root_radius(&ws.coeffs, &slack)?;
+            let t = PolyRef::new(&ws.coeffs).root_radius_within(&slack)?;
             (lo, hi) = (lo.max(-t), hi.min(t));
         }
         let answer = if centred {
