@@ -439,6 +439,37 @@ mod tests {
         );
     }
 
+    /// Issue 11: the radius beyond which no polynomial within a slack has a root is Cauchy's
+    /// test with the slack, within a quarter octave of the smallest such radius on its grid,
+    /// where four times Fujiwara's bound was 8× the roots' modulus for `(d·u)³² − 1`.
+    #[test]
+    fn root_radius_within_a_slack_is_tight_and_refuses_a_wide_slack() {
+        let d = 0.3f64;
+        let mut c = vec![0.0; 33];
+        c[0] = -1.0;
+        c[32] = d.powi(32);
+        let p = PolyRef::new(&c);
+        let tiny = |r: f64| 1e-14 * (1.0 + (d * r).powi(32));
+        let t = p.root_radius_within(&tiny).expect("a radius");
+        // The roots have modulus 1/d; Cauchy's test passes once (dT)³² > 1 + slack.
+        assert!(t > 1.0 / d && t < 1.25 / d, "T = {t}, 1/d = {}", 1.0 / d);
+        // Past T even the worst polynomial within the slack keeps away from zero.
+        for s in [t, 2.0 * t, 10.0 * t] {
+            assert!((d * s).powi(32) - 1.0 > tiny(s), "s = {s}");
+        }
+        let wide = |r: f64| (d * r).powi(32) * 2.0;
+        assert_eq!(
+            p.root_radius_within(&wide),
+            None,
+            "a slack above the leading term"
+        );
+        assert_eq!(
+            PolyRef::new(&[3.0]).root_radius_within(&tiny),
+            None,
+            "a constant"
+        );
+    }
+
     #[test]
     fn borrowed_and_owned_queries_agree_and_stats_are_optional() {
         let p = Poly::<f64>::from_roots(&[-3.0, 0.25, 1.5, 7.0]);
