@@ -11,7 +11,7 @@ use crate::univariate::ETA;
 /// errors `3u²/(1 − 4u)` for the sum of two double-words (their Algorithm 6), `2u²` for a
 /// double-word times a double (Algorithm 9) and `5u²` for the product of two double-words
 /// (Algorithm 12); `8u²` covers each with room for the `(1 − 4u)` factors.
-pub(crate) const DD_UNIT: f64 = 8.0 * (0.5 * f64::EPSILON) * (0.5 * f64::EPSILON);
+pub const DD_UNIT: f64 = 8.0 * (0.5 * f64::EPSILON) * (0.5 * f64::EPSILON);
 
 /// Absolute error allowed per double-double operation for underflow: each uses at most four
 /// `f64` products or fused multiply–adds, whose error terms are exact only when no underflow
@@ -34,9 +34,11 @@ pub(crate) fn gamma_u(k: usize, u: f64) -> f64 {
     }
 }
 
-/// A double-double number `hi + lo`, `|lo| ≤ ulp(hi)/2`.
+/// A double-double number `hi + lo`, `|lo| ≤ ulp(hi)/2` (about 106 bits). Each of
+/// [`Dd::add`], [`Dd::mul`] and [`Dd::mul_f`] is within [`DD_UNIT`] of the exact result,
+/// relatively, when nothing underflows or overflows.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct Dd {
+pub struct Dd {
     pub(crate) hi: f64,
     pub(crate) lo: f64,
 }
@@ -64,8 +66,14 @@ pub(crate) fn two_prod(a: f64, b: f64) -> (f64, f64) {
 }
 
 impl Dd {
+    /// 0.
+    pub const ZERO: Dd = Dd { hi: 0.0, lo: 0.0 };
+    /// 1.
+    pub const ONE: Dd = Dd { hi: 1.0, lo: 0.0 };
+
+    /// `x` exactly.
     #[inline]
-    pub(crate) fn from_f64(x: f64) -> Dd {
+    pub fn from_f64(x: f64) -> Dd {
         Dd { hi: x, lo: 0.0 }
     }
 
@@ -105,9 +113,22 @@ impl Dd {
         Dd { hi, lo }
     }
 
+    /// `a·b` exactly (TwoProduct), unless the product underflows.
+    #[inline]
+    pub fn product(a: f64, b: f64) -> Dd {
+        let (hi, lo) = two_prod(a, b);
+        Dd { hi, lo }
+    }
+
+    /// The nearest `f64` (`hi`: within half an ulp of `hi + lo`).
+    #[inline]
+    pub fn to_f64(self) -> f64 {
+        self.hi
+    }
+
     /// Algorithm 6 of Joldes et al. (accurate double-word sum).
     #[inline]
-    pub(crate) fn add(self, y: Dd) -> Dd {
+    pub fn add(self, y: Dd) -> Dd {
         let (sh, sl) = two_sum(self.hi, y.hi);
         let (th, tl) = two_sum(self.lo, y.lo);
         let c = sl + th;
@@ -119,7 +140,7 @@ impl Dd {
 
     /// Algorithm 4 of Joldes et al. (double-word plus double).
     #[inline]
-    pub(crate) fn add_f(self, y: f64) -> Dd {
+    pub fn add_f(self, y: f64) -> Dd {
         let (sh, sl) = two_sum(self.hi, y);
         let v = self.lo + sl;
         let (hi, lo) = fast_two_sum(sh, v);
@@ -128,7 +149,7 @@ impl Dd {
 
     /// Algorithm 9 of Joldes et al. (double-word times double).
     #[inline]
-    pub(crate) fn mul_f(self, y: f64) -> Dd {
+    pub fn mul_f(self, y: f64) -> Dd {
         let (ch, cl1) = two_prod(self.hi, y);
         let cl2 = self.lo * y;
         let (th, tl1) = fast_two_sum(ch, cl2);
@@ -139,7 +160,7 @@ impl Dd {
 
     /// Algorithm 12 of Joldes et al. (double-word times double-word).
     #[inline]
-    pub(crate) fn mul(self, y: Dd) -> Dd {
+    pub fn mul(self, y: Dd) -> Dd {
         let (ch, cl1) = two_prod(self.hi, y.hi);
         let tl0 = self.lo * y.lo;
         let tl1 = self.hi.mul_add(y.lo, tl0);

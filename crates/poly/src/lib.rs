@@ -85,6 +85,7 @@ mod univariate;
 
 pub use crate::bivariate::{BiPoly, Monomial, QBiPoly};
 pub use crate::closed_form::linear_root_in;
+pub use crate::double_double::{DD_UNIT, Dd};
 pub use crate::near_zero::{
     NearZeroBuffers, near_double_roots_into, near_zero_components_into, real_roots_of_coeffs_into,
 };

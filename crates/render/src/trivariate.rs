@@ -11,7 +11,7 @@ use std::ops::{Add, Mul, Neg, Sub};
 use glam::DVec3;
 use num_bigint::BigInt;
 use num_traits::{One, Zero};
-use poly::{Poly, QPoly, Rat};
+use poly::{Dd, Poly, QPoly, Rat};
 
 /// One monomial `coeff · x^e[0] · y^e[1] · z^e[2]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -383,10 +383,36 @@ impl Poly3 {
         scratch: &mut RestrictScratch,
         out: &mut Vec<f64>,
     ) {
+        self.restrict_generic(o.to_array(), d.to_array(), scratch, out);
+    }
+
+    /// [`Poly3::restrict_into`] in double-double arithmetic, from a restriction point given as
+    /// double-doubles: the same program, each operation within [`poly::DD_UNIT`] instead of
+    /// `u`, so the coefficients' error is `γ_dd(K)·c̃ₘ` with the same `K`
+    /// ([`Poly3::restriction_rounding_steps`]) — the renderer's tier between the `f64`
+    /// restriction and the exact one (`paper-notes/implicit-surfaces.md` §6).
+    pub fn restrict_dd_into(
+        &self,
+        o: [Dd; 3],
+        d: DVec3,
+        scratch: &mut RestrictScratch<Dd>,
+        out: &mut Vec<Dd>,
+    ) {
+        self.restrict_generic(o, d.to_array(), scratch, out);
+    }
+
+    /// The restriction program of [`Poly3::restrict_into`] over `T` (`f64` or [`Dd`]).
+    fn restrict_generic<T: RestrictNum>(
+        &self,
+        o: [T; 3],
+        d: [f64; 3],
+        scratch: &mut RestrictScratch<T>,
+        out: &mut Vec<T>,
+    ) {
         let deg = self.partial_degrees();
         let total = self.degree() as usize;
         out.clear();
-        out.resize(total + 1, 0.0);
+        out.resize(total + 1, T::ZERO);
         // Power tables: row e of axis k holds the coefficients of (o_k + d_k t)^e, stored
         // flat at offset e(e+1)/2 (row e has e + 1 entries).
         for k in 0..3 {
@@ -404,19 +430,19 @@ impl Poly3 {
         while start < terms.len() {
             let i = terms[start].exps[0];
             scratch.ysum.clear();
-            scratch.ysum.resize(total + 1 - i as usize, 0.0);
+            scratch.ysum.resize(total + 1 - i as usize, T::ZERO);
             let mut ymax = 0;
             while start < terms.len() && terms[start].exps[0] == i {
                 let j = terms[start].exps[1];
                 scratch.zsum.clear();
-                scratch.zsum.resize(zdeg + 1, 0.0);
+                scratch.zsum.resize(zdeg + 1, T::ZERO);
                 let mut zmax = 0;
                 while start < terms.len() && terms[start].exps[0] == i && terms[start].exps[1] == j
                 {
                     let t = terms[start];
                     let zr = row(&scratch.powers[2], t.exps[2]);
                     for (s, c) in scratch.zsum.iter_mut().zip(zr) {
-                        *s += t.coeff * c;
+                        *s = s.add(c.mul_f(t.coeff));
                     }
                     zmax = zmax.max(t.exps[2] as usize);
                     start += 1;
@@ -424,7 +450,7 @@ impl Poly3 {
                 let yr = row(&scratch.powers[1], j);
                 for (a, yb) in yr.iter().enumerate() {
                     for (b, zc) in scratch.zsum[..=zmax].iter().enumerate() {
-                        scratch.ysum[a + b] += yb * zc;
+                        scratch.ysum[a + b] = scratch.ysum[a + b].add(yb.mul(*zc));
                     }
                 }
                 ymax = ymax.max(j as usize + zmax);
@@ -432,7 +458,7 @@ impl Poly3 {
             let xr = row(&scratch.powers[0], i);
             for (a, xa) in xr.iter().enumerate() {
                 for (b, yb) in scratch.ysum[..=ymax].iter().enumerate() {
-                    out[a + b] += xa * yb;
+                    out[a + b] = out[a + b].add(xa.mul(*yb));
                 }
             }
         }
@@ -664,36 +690,87 @@ pub struct Eval3 {
     pub grad_abs: DVec3,
 }
 
-/// Reusable buffers for [`Poly3::restrict_into`].
+/// Reusable buffers for [`Poly3::restrict_into`] (and, over [`Dd`],
+/// [`Poly3::restrict_dd_into`]).
 #[derive(Clone, Debug, Default)]
-pub struct RestrictScratch {
-    powers: [Vec<f64>; 3],
-    zsum: Vec<f64>,
-    ysum: Vec<f64>,
+pub struct RestrictScratch<T = f64> {
+    powers: [Vec<T>; 3],
+    zsum: Vec<T>,
+    ysum: Vec<T>,
+}
+
+/// The arithmetic of the restriction program: `f64`, and [`Dd`] for the double-double tier.
+/// The `f64` operations are the plain ones, so its results are those of writing the program
+/// in `f64` directly.
+pub(crate) trait RestrictNum: Copy {
+    /// 0.
+    const ZERO: Self;
+    /// 1.
+    const ONE: Self;
+    /// `self + y`, one rounding.
+    fn add(self, y: Self) -> Self;
+    /// `self·y`, one rounding.
+    fn mul(self, y: Self) -> Self;
+    /// `self·y` for an `f64` `y`, one rounding.
+    fn mul_f(self, y: f64) -> Self;
+}
+
+impl RestrictNum for f64 {
+    const ZERO: f64 = 0.0;
+    const ONE: f64 = 1.0;
+    #[inline]
+    fn add(self, y: f64) -> f64 {
+        self + y
+    }
+    #[inline]
+    fn mul(self, y: f64) -> f64 {
+        self * y
+    }
+    #[inline]
+    fn mul_f(self, y: f64) -> f64 {
+        self * y
+    }
+}
+
+impl RestrictNum for Dd {
+    const ZERO: Dd = Dd::ZERO;
+    const ONE: Dd = Dd::ONE;
+    #[inline]
+    fn add(self, y: Dd) -> Dd {
+        Dd::add(self, y)
+    }
+    #[inline]
+    fn mul(self, y: Dd) -> Dd {
+        Dd::mul(self, y)
+    }
+    #[inline]
+    fn mul_f(self, y: f64) -> Dd {
+        Dd::mul_f(self, y)
+    }
 }
 
 /// Row `e` of a power table built by [`linear_powers`].
-fn row(table: &[f64], e: u32) -> &[f64] {
+fn row<T>(table: &[T], e: u32) -> &[T] {
     let e = e as usize;
     let start = e * (e + 1) / 2;
     &table[start..start + e + 1]
 }
 
 /// Rows `(o + d·t)^e` for `e = 0..=max`, flat, row `e` at offset `e(e+1)/2`, low → high.
-fn linear_powers(o: f64, d: f64, max: usize, table: &mut Vec<f64>) {
+fn linear_powers<T: RestrictNum>(o: T, d: f64, max: usize, table: &mut Vec<T>) {
     // Every entry is written below: only a change of size touches the memory.
-    table.resize((max + 1) * (max + 2) / 2, 0.0);
-    table[0] = 1.0;
+    table.resize((max + 1) * (max + 2) / 2, T::ZERO);
+    table[0] = T::ONE;
     for e in 1..=max {
         // (o + d t)·row_{e−1}: c_m = o·p_m + d·p_{m−1}, with p_{−1} = p_e = 0 written into the
         // same expression (`o·0 + d·p` is not simplified: the values are those of one formula).
         let (done, rest) = table.split_at_mut(e * (e + 1) / 2);
         let (prev, cur) = (&done[(e - 1) * e / 2..], &mut rest[..=e]);
-        cur[0] = o * prev[0] + d * 0.0;
+        cur[0] = prev[0].mul(o).add(T::ZERO.mul_f(d));
         for (c, w) in cur[1..e].iter_mut().zip(prev[..e].windows(2)) {
-            *c = o * w[1] + d * w[0];
+            *c = w[1].mul(o).add(w[0].mul_f(d));
         }
-        cur[e] = o * 0.0 + d * prev[e - 1];
+        cur[e] = T::ZERO.mul(o).add(prev[e - 1].mul_f(d));
     }
 }
 

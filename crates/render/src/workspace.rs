@@ -2,6 +2,7 @@
 
 use crate::stats::TraceStats;
 use crate::trivariate::RestrictScratch;
+use poly::Dd;
 
 /// Per-thread state of the tracer: the buffer that receives the restricted polynomial
 /// `F(o + t·d)`, scratch for [`Poly3::restrict_into`](crate::Poly3::restrict_into), and the
@@ -14,6 +15,10 @@ pub struct Workspace {
     pub(crate) roots: Vec<f64>,
     /// Scratch for the trivariate restriction.
     pub(crate) restrict: RestrictScratch,
+    /// The same for the double-double restriction of a ray the `f64` one cannot decide, and
+    /// its coefficients.
+    pub(crate) restrict_dd: RestrictScratch<Dd>,
+    pub(crate) coeffs_dd: Vec<Dd>,
     /// Buffers of the Bézier patches' per-ray algebra (`groebner::solve_ray_patch`).
     pub(crate) solver: groebner::SolveWorkspace,
     /// Per light, the primitive that blocked this thread's last blocked shadow ray towards it

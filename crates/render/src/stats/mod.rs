@@ -74,6 +74,12 @@ pub struct TraceStats {
 /// `roots.slack_limited`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct CertificationStats {
+    /// Slack-limited rays restricted again in double-double arithmetic (then rounded to
+    /// `f64` with a slack of the polynomial's own scale plus the double-double rounding):
+    /// the first tier, at any degree.
+    pub dd_restrictions: u64,
+    /// Of those, rays the double-double restriction decided.
+    pub dd_decided: u64,
     /// Rays restricted again in exact rational arithmetic (then rounded to `f64` with a
     /// slack of the polynomial's own scale, which decides most), up to the degree
     /// `EXACT_RESTRICTION_MAX_DEGREE` of the implicit-surface module.
@@ -131,6 +137,8 @@ impl TraceStats {
         self.total_internal_reflections += o.total_internal_reflections;
         self.tir_merged += o.tir_merged;
         self.singular_normals += o.singular_normals;
+        self.surface_certification.dd_restrictions += o.surface_certification.dd_restrictions;
+        self.surface_certification.dd_decided += o.surface_certification.dd_decided;
         self.surface_certification.exact_restrictions += o.surface_certification.exact_restrictions;
         self.surface_certification.exact_isolations += o.surface_certification.exact_isolations;
         self.surface_certification.undecided_rays += o.surface_certification.undecided_rays;
@@ -413,6 +421,16 @@ impl fmt::Display for StatsReport<'_> {
             r.slack_limited
         )?;
         let c = &s.surface_certification;
+        writeln!(
+            f,
+            "    rays restricted in double-double {:>12}",
+            c.dd_restrictions
+        )?;
+        writeln!(
+            f,
+            "      decided there                  {:>12}",
+            c.dd_decided
+        )?;
         writeln!(
             f,
             "    rays restricted exactly          {:>12}",

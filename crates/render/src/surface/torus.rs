@@ -13,7 +13,7 @@
 //! See `paper-notes/implicit-surfaces.md` §3 for the restriction's coefficients.
 
 use glam::DVec3;
-use poly::{QPoly, Rat};
+use poly::{Dd, QPoly, Rat};
 
 use super::SurfaceKind;
 use super::implicit::ImplicitFn;
@@ -118,6 +118,19 @@ impl ImplicitFn for Torus {
         let (r2, q2) = (self.major * self.major, self.minor * self.minor);
         let factor = 2.0 * (4.0 * r2).max(1.0) * (1.0 + r2 + q2);
         4.0 * f64::from_bits(1) * 40.0 * factor * factor
+    }
+
+    /// None: the torus's `Poly3` has rounded coefficients (`(R² − r²)²` and the like), so its
+    /// double-double restriction is not the surface as written; slack-limited rays go to the
+    /// exact tier ([`Torus::restrict_exact`]).
+    fn restrict_dd(
+        &self,
+        _: [Dd; 3],
+        _: DVec3,
+        _: &mut RestrictScratch<Dd>,
+        _: &mut Vec<Dd>,
+    ) -> bool {
+        false
     }
 
     /// `(|o + td|² + R² − r²)² − 4R²((o_x + td_x)² + (o_y + td_y)²)` over the rationals.
