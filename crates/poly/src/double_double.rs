@@ -34,8 +34,8 @@ pub(crate) fn gamma_u(k: usize, u: f64) -> f64 {
     }
 }
 
-/// A double-double number `hi + lo`, `|lo| ≤ ulp(hi)/2` (about 106 bits). Each of
-/// [`Dd::add`], [`Dd::mul`] and [`Dd::mul_f`] is within [`DD_UNIT`] of the exact result,
+/// A double-double number `hi + lo`, `|lo| ≤ ulp(hi)/2` (about 106 bits). Each of `+` and
+/// `·` between two of them or with an `f64` is within [`DD_UNIT`] of the exact result,
 /// relatively, when nothing underflows or overflows.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Dd {
@@ -128,7 +128,7 @@ impl Dd {
 
     /// Algorithm 6 of Joldes et al. (accurate double-word sum).
     #[inline]
-    pub fn add(self, y: Dd) -> Dd {
+    pub(crate) fn add(self, y: Dd) -> Dd {
         let (sh, sl) = two_sum(self.hi, y.hi);
         let (th, tl) = two_sum(self.lo, y.lo);
         let c = sl + th;
@@ -140,7 +140,7 @@ impl Dd {
 
     /// Algorithm 4 of Joldes et al. (double-word plus double).
     #[inline]
-    pub fn add_f(self, y: f64) -> Dd {
+    pub(crate) fn add_f(self, y: f64) -> Dd {
         let (sh, sl) = two_sum(self.hi, y);
         let v = self.lo + sl;
         let (hi, lo) = fast_two_sum(sh, v);
@@ -149,7 +149,7 @@ impl Dd {
 
     /// Algorithm 9 of Joldes et al. (double-word times double).
     #[inline]
-    pub fn mul_f(self, y: f64) -> Dd {
+    pub(crate) fn mul_f(self, y: f64) -> Dd {
         let (ch, cl1) = two_prod(self.hi, y);
         let cl2 = self.lo * y;
         let (th, tl1) = fast_two_sum(ch, cl2);
@@ -160,7 +160,7 @@ impl Dd {
 
     /// Algorithm 12 of Joldes et al. (double-word times double-word).
     #[inline]
-    pub fn mul(self, y: Dd) -> Dd {
+    pub(crate) fn mul(self, y: Dd) -> Dd {
         let (ch, cl1) = two_prod(self.hi, y.hi);
         let tl0 = self.lo * y.lo;
         let tl1 = self.hi.mul_add(y.lo, tl0);
@@ -183,5 +183,41 @@ impl Dd {
         } else {
             0
         }
+    }
+}
+
+impl std::ops::Add for Dd {
+    type Output = Dd;
+    /// Algorithm 6 of Joldes et al. (within [`DD_UNIT`]).
+    #[inline]
+    fn add(self, y: Dd) -> Dd {
+        Dd::add(self, y)
+    }
+}
+
+impl std::ops::Add<f64> for Dd {
+    type Output = Dd;
+    /// Algorithm 4 of Joldes et al. (within [`DD_UNIT`]).
+    #[inline]
+    fn add(self, y: f64) -> Dd {
+        self.add_f(y)
+    }
+}
+
+impl std::ops::Mul for Dd {
+    type Output = Dd;
+    /// Algorithm 12 of Joldes et al. (within [`DD_UNIT`]).
+    #[inline]
+    fn mul(self, y: Dd) -> Dd {
+        Dd::mul(self, y)
+    }
+}
+
+impl std::ops::Mul<f64> for Dd {
+    type Output = Dd;
+    /// Algorithm 9 of Joldes et al. (within [`DD_UNIT`]).
+    #[inline]
+    fn mul(self, y: f64) -> Dd {
+        self.mul_f(y)
     }
 }

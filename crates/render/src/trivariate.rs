@@ -737,15 +737,15 @@ impl RestrictNum for Dd {
     const ONE: Dd = Dd::ONE;
     #[inline]
     fn add(self, y: Dd) -> Dd {
-        Dd::add(self, y)
+        self + y
     }
     #[inline]
     fn mul(self, y: Dd) -> Dd {
-        Dd::mul(self, y)
+        self * y
     }
     #[inline]
     fn mul_f(self, y: f64) -> Dd {
-        Dd::mul_f(self, y)
+        self * y
     }
 }
 

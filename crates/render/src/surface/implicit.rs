@@ -684,7 +684,7 @@ impl<F: ImplicitFn> Implicit<F> {
         opts: &RootOptions,
         centred: bool,
     ) -> Option<Option<f64>> {
-        let o: [Dd; 3] = std::array::from_fn(|k| Dd::product(t0, ray.dir[k]).add_f(ray.origin[k]));
+        let o: [Dd; 3] = std::array::from_fn(|k| Dd::product(t0, ray.dir[k]) + ray.origin[k]);
         let (mut scratch, mut coeffs) = (
             std::mem::take(&mut ws.restrict_dd),
             std::mem::take(&mut ws.coeffs_dd),
