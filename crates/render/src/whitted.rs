@@ -76,10 +76,10 @@ pub fn nearest_hit(
     let best = scene
         .aggregate
         .nearest(ray, t_range.clone(), &mut visits, |i| {
-            let prim = &scene.primitives[i as usize];
-            let kind = prim.surface.kind().index();
+            let surface = &scene.surfaces[i as usize];
+            let kind = surface.kind().index();
             ws.stats.per_kind[kind].tests += 1;
-            let h = prim.surface.intersect(ray, t_range.clone(), ws)?;
+            let h = surface.intersect(ray, t_range.clone(), ws)?;
             ws.stats.per_kind[kind].hits += 1;
             Some((h.t, h))
         });
@@ -101,10 +101,10 @@ fn blocks(
     t_range: Range<f64>,
     ws: &mut Workspace,
 ) -> bool {
-    let prim = &scene.primitives[i];
-    let kind = prim.surface.kind().index();
+    let surface = &scene.surfaces[i];
+    let kind = surface.kind().index();
     ws.stats.per_kind[kind].shadow_tests += 1;
-    let hit = prim.surface.occluded(ray, t_range, ws);
+    let hit = surface.occluded(ray, t_range, ws);
     ws.stats.per_kind[kind].occlusions += u64::from(hit);
     hit
 }
@@ -160,7 +160,7 @@ fn occluded_towards(
     }
     let cached = ws.shadow_blockers[light];
     // A workspace may come from another scene: an index out of range is no cache.
-    let known_clear = if (cached as usize) < scene.primitives.len() {
+    let known_clear = if (cached as usize) < scene.surfaces.len() {
         if blocks(scene, cached as usize, ray, t_range.clone(), ws) {
             ws.stats.shadow_cache_hits += 1;
             return true;
@@ -237,12 +237,11 @@ fn shade(
     ws: &mut Workspace,
 ) -> Rgb {
     let depth = branch.depth;
-    let prim = &scene.primitives[index];
-    let m = &prim.material;
+    let m = &scene.materials[index];
     if m.illumination == Illumination::Blackbody {
         return Rgb::ZERO;
     }
-    let g = prim.surface.shading(hit);
+    let g = scene.surfaces[index].shading(hit);
     let v = ray.dir.normalize(); // V: from the eye towards the surface
     let mut n = match g.normal {
         Some(n) => n,
@@ -423,9 +422,9 @@ mod tests {
                 let before = ws.shadow_blockers.first().copied();
                 let with_cache = occluded_towards(scene, &ray, range.clone(), 0, &mut ws);
                 let brute = scene
-                    .primitives
+                    .surfaces
                     .iter()
-                    .any(|p| p.surface.occluded(&ray, range.clone(), &mut ws));
+                    .any(|s| s.occluded(&ray, range.clone(), &mut ws));
                 assert_eq!(with_cache, brute, "shadow verdict from {origin}");
                 assert_eq!(occluded(scene, &ray, range, &mut ws), brute, "uncached");
                 blocked += usize::from(brute);
