@@ -341,7 +341,7 @@ impl fmt::Display for StatsReport<'_> {
         )?;
         writeln!(
             f,
-            "    by the cached blocker            {:>12}",
+            "    by the cached blocker           {:>12}",
             s.shadow_cache_hits
         )?;
         writeln!(
