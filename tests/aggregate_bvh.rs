@@ -23,8 +23,8 @@ fn brute_nearest(
     ws: &mut Workspace,
 ) -> Option<(usize, Hit)> {
     let mut best: Option<(usize, Hit)> = None;
-    for (i, p) in scene.primitives.iter().enumerate() {
-        if let Some(h) = p.surface.intersect(ray, range.clone(), ws)
+    for (i, s) in scene.surfaces.iter().enumerate() {
+        if let Some(h) = s.intersect(ray, range.clone(), ws)
             && best.is_none_or(|(_, b)| h.t < b.t)
         {
             best = Some((i, h));
@@ -59,9 +59,9 @@ fn assert_agrees_with_brute_force(
 
 fn brute_occluded(scene: &PreparedScene, ray: &Ray, range: Range<f64>, ws: &mut Workspace) -> bool {
     scene
-        .primitives
+        .surfaces
         .iter()
-        .any(|p| p.surface.occluded(ray, range.clone(), ws))
+        .any(|s| s.occluded(ray, range.clone(), ws))
 }
 
 fn random_scene(rng: &mut ChaCha8Rng) -> Scene {
@@ -180,9 +180,9 @@ fn bvh_nearest_hits_and_shadow_verdicts_equal_brute_force() {
         assert_eq!(prepared.aggregate.unbounded().len(), 1, "only the plane");
         let mut ws = Workspace::new();
         let centres: Vec<DVec3> = prepared
-            .primitives
+            .surfaces
             .iter()
-            .filter_map(|p| p.surface.bounds())
+            .filter_map(|s| s.bounds())
             .map(|b| (b.min + b.max) * 0.5)
             .collect();
         for k in 0..1000 {
@@ -258,7 +258,7 @@ fn tiny_scenes_flat_or_not_equal_brute_force() {
             normal: DVec3::Z,
         }));
         let prepared = PreparedScene::new(&ValidScene::new(scene).unwrap()).expect("valid scene");
-        let bounded = prepared.primitives.len() - 1;
+        let bounded = prepared.surfaces.len() - 1;
         assert_eq!(
             prepared.aggregate.bvh_info().nodes == 1,
             bounded <= render::aggregate::FLAT_MAX_ITEMS,
@@ -269,8 +269,7 @@ fn tiny_scenes_flat_or_not_equal_brute_force() {
             let target = match k % 3 {
                 // The shared face x = 1 of the two boxes.
                 0 => DVec3::new(1.0, rng.gen_range(0.0..1.0), rng.gen_range(0.0..1.0)),
-                _ => prepared.primitives[rng.gen_range(0..bounded)]
-                    .surface
+                _ => prepared.surfaces[rng.gen_range(0..bounded)]
                     .bounds()
                     .map(|b| (b.min + b.max) * 0.5)
                     .unwrap_or_default(),

@@ -399,8 +399,7 @@ fn a_bounding_sphere_clips_the_surface() {
     let prepared = PreparedScene::new(&scene).unwrap();
     let mut ws = Workspace::new();
     let t_of = |object: usize, o: DVec3, d: DVec3, ws: &mut Workspace| {
-        prepared.primitives[object]
-            .surface
+        prepared.surfaces[object]
             .intersect(&Ray::new(o, d), 0.0..f64::INFINITY, ws)
             .map(|h| h.t)
     };

@@ -298,15 +298,15 @@ fn slowest_object(
     let ray = camera.ray(x + w / 2.0, y + h / 2.0);
     let mut slowest: Option<SlowObject> = None;
     let mut ws = Workspace::new();
-    for (index, p) in scene.primitives.iter().enumerate() {
+    for (index, surface) in scene.surfaces.iter().enumerate() {
         ws.stats = TraceStats::default();
         let started = Instant::now();
-        let _ = p.surface.intersect(&ray, 0.0..f64::INFINITY, &mut ws);
+        let _ = surface.intersect(&ray, 0.0..f64::INFINITY, &mut ws);
         let elapsed = started.elapsed();
         if slowest.is_none_or(|s| elapsed > s.elapsed) {
             slowest = Some(SlowObject {
                 index,
-                kind: p.surface.kind(),
+                kind: surface.kind(),
                 elapsed,
                 escalations: Escalations::of(&ws.stats.roots),
             });

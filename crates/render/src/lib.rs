@@ -122,7 +122,7 @@ pub use crate::output::{
 pub use crate::pipeline::{
     RenderError, RenderReport, prepare_render, render_scene, render_scene_with_cancel,
 };
-pub use crate::prepared::{PreparedScene, Primitive};
+pub use crate::prepared::PreparedScene;
 pub use crate::scene::Scene;
 pub use crate::stats::{
     CertificationStats, Escalations, HIST_BINS, KindStats, PatchStats, PhaseTimes, SlowObject,

@@ -76,10 +76,10 @@ pub fn nearest_hit(
     let best = scene
         .aggregate
         .nearest(ray, t_range.clone(), &mut visits, |i| {
-            let prim = &scene.primitives[i as usize];
-            let kind = prim.surface.kind().index();
+            let surface = &scene.surfaces[i as usize];
+            let kind = surface.kind().index();
             ws.stats.per_kind[kind].tests += 1;
-            let h = prim.surface.intersect(ray, t_range.clone(), ws)?;
+            let h = surface.intersect(ray, t_range.clone(), ws)?;
             ws.stats.per_kind[kind].hits += 1;
             Some((h.t, h))
         });
@@ -101,10 +101,10 @@ fn blocks(
     t_range: Range<f64>,
     ws: &mut Workspace,
 ) -> bool {
-    let prim = &scene.primitives[i];
-    let kind = prim.surface.kind().index();
+    let surface = &scene.surfaces[i];
+    let kind = surface.kind().index();
     ws.stats.per_kind[kind].shadow_tests += 1;
-    let hit = prim.surface.occluded(ray, t_range, ws);
+    let hit = surface.occluded(ray, t_range, ws);
     ws.stats.per_kind[kind].occlusions += u64::from(hit);
     hit
 }
@@ -150,14 +150,19 @@ fn occluded_towards(
     light: usize,
     ws: &mut Workspace,
 ) -> bool {
+    #[cfg(test)]
+    if ws.shadow_cache_off {
+        return occluded(scene, ray, t_range, ws);
+    }
     if ws.shadow_blockers.len() <= light {
         ws.shadow_blockers
             .resize(scene.lights.len().max(light + 1), NO_BLOCKER);
     }
     let cached = ws.shadow_blockers[light];
     // A workspace may come from another scene: an index out of range is no cache.
-    let known_clear = if (cached as usize) < scene.primitives.len() {
+    let known_clear = if (cached as usize) < scene.surfaces.len() {
         if blocks(scene, cached as usize, ray, t_range.clone(), ws) {
+            ws.stats.shadow_cache_hits += 1;
             return true;
         }
         Some(cached)
@@ -232,12 +237,11 @@ fn shade(
     ws: &mut Workspace,
 ) -> Rgb {
     let depth = branch.depth;
-    let prim = &scene.primitives[index];
-    let m = &prim.material;
+    let m = &scene.materials[index];
     if m.illumination == Illumination::Blackbody {
         return Rgb::ZERO;
     }
-    let g = prim.surface.shading(hit);
+    let g = scene.surfaces[index].shading(hit);
     let v = ray.dir.normalize(); // V: from the eye towards the surface
     let mut n = match g.normal {
         Some(n) => n,
@@ -418,9 +422,9 @@ mod tests {
                 let before = ws.shadow_blockers.first().copied();
                 let with_cache = occluded_towards(scene, &ray, range.clone(), 0, &mut ws);
                 let brute = scene
-                    .primitives
+                    .surfaces
                     .iter()
-                    .any(|p| p.surface.occluded(&ray, range.clone(), &mut ws));
+                    .any(|s| s.occluded(&ray, range.clone(), &mut ws));
                 assert_eq!(with_cache, brute, "shadow verdict from {origin}");
                 assert_eq!(occluded(scene, &ray, range, &mut ws), brute, "uncached");
                 blocked += usize::from(brute);
@@ -435,6 +439,46 @@ mod tests {
         assert!(
             cached_blocks > blocked / 2,
             "the cache answers most: {cached_blocks}"
+        );
+    }
+
+    /// The shadow cache changes no pixel of an SPD scene (balls-s2: 91 spheres over a floor
+    /// polygon, three lights, mirror spheres), and it is used: most blocked shadow rays are
+    /// answered by the cached blocker without a traversal.
+    #[test]
+    fn shadow_cache_changes_no_pixel_of_the_sphereflake() {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/spd/balls-s2.nff");
+        let text = std::fs::read_to_string(&path).expect("scenes/spd/balls-s2.nff");
+        let scene = crate::scene::parse_nff(&text, &path).expect("valid NFF");
+        let prepared = PreparedScene::new(&scene).expect("prepared");
+        let size = 48;
+        let camera = crate::camera::Camera::new(&scene.camera, size, size);
+        let (mut cached, mut uncached) = (Workspace::new(), Workspace::new());
+        uncached.shadow_cache_off = true;
+        for y in 0..size {
+            for x in 0..size {
+                let ray = camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
+                let a = trace_primary(&prepared, &ray, &mut cached);
+                let b = trace_primary(&prepared, &ray, &mut uncached);
+                assert_eq!(a, b, "pixel ({x}, {y})");
+            }
+        }
+        let (c, u) = (&cached.stats, &uncached.stats);
+        assert_eq!(c.shadow_rays, u.shadow_rays, "the same shadow rays");
+        assert_eq!(c.shadow_blocked, u.shadow_blocked, "the same verdicts");
+        assert_eq!(u.shadow_cache_hits, 0, "no cache, no hit");
+        assert!(
+            c.shadow_cache_hits * 2 > c.shadow_blocked && c.shadow_blocked > 100,
+            "the cache answers most blocked rays: {} of {}",
+            c.shadow_cache_hits,
+            c.shadow_blocked
+        );
+        assert!(
+            c.bvh_node_visits < u.bvh_node_visits,
+            "and saves traversals: {} against {}",
+            c.bvh_node_visits,
+            u.bvh_node_visits
         );
     }
 }

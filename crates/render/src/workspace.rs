@@ -24,6 +24,10 @@ pub struct Workspace {
     /// Per light, the primitive that blocked this thread's last blocked shadow ray towards it
     /// (`NO_BLOCKER` for none yet): the shadow cache of `whitted::occluded_towards`.
     pub(crate) shadow_blockers: Vec<u32>,
+    /// Bypasses the shadow cache (every shadow ray traverses the BVH): for the tests that
+    /// check the cache changes no verdict and no pixel.
+    #[cfg(test)]
+    pub(crate) shadow_cache_off: bool,
     /// Counters.
     pub stats: TraceStats,
 }

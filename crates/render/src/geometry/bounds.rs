@@ -85,19 +85,7 @@ impl Bounds3 {
     /// slab plane with a zero direction component) yields NaN, and that slab does not clip:
     /// the ray is inside the box where the other slabs say.
     pub fn intersect_ray(&self, ray: &Ray, range: Range<f64>) -> Option<Range<f64>> {
-        self.intersect_ray_inv(ray.origin, DVec3::ONE / ray.dir, range)
-    }
-
-    /// [`Bounds3::intersect_ray`] for the ray from `origin` with reciprocal direction `inv`
-    /// (`1/dir` componentwise).
-    #[inline]
-    pub fn intersect_ray_inv(
-        &self,
-        origin: DVec3,
-        inv: DVec3,
-        range: Range<f64>,
-    ) -> Option<Range<f64>> {
-        self.slab(&SlabRay::from_inv(origin, inv), range.start, range.end)
+        self.slab(&ray.slab_ray(), range.start, range.end)
             .map(|(t0, t1)| t0..t1)
     }
 
@@ -146,22 +134,17 @@ pub struct SlabRay {
 }
 
 impl SlabRay {
-    /// The ray from `origin` along `dir`.
+    /// The ray from `origin` along `dir` ([`Ray::slab_ray`]).
+    #[inline]
     pub fn new(ray: &Ray) -> Self {
-        Self::from_inv(ray.origin, DVec3::ONE / ray.dir)
+        ray.slab_ray()
     }
 
-    /// The ray from `origin` with reciprocal direction `inv`.
-    pub fn from_inv(origin: DVec3, inv: DVec3) -> Self {
-        let unsigned_inf = |x: f64| if x.is_infinite() { f64::INFINITY } else { x };
-        SlabRay {
-            origin,
-            inv: DVec3::new(
-                unsigned_inf(inv.x),
-                unsigned_inf(inv.y),
-                unsigned_inf(inv.z),
-            ),
-        }
+    /// The ray from `origin` with reciprocal direction `inv` whose infinite components are
+    /// already `+∞` (as [`Ray::new`] stores it).
+    #[inline]
+    pub(crate) fn from_unsigned_inv(origin: DVec3, inv: DVec3) -> Self {
+        SlabRay { origin, inv }
     }
 }
 

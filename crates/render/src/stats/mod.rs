@@ -37,6 +37,9 @@ pub struct TraceStats {
     pub light_below_surface: u64,
     /// Shadow rays stopped at the first blocker (counted in `per_kind[..].occlusions` too).
     pub shadow_blocked: u64,
+    /// Of those, shadow rays blocked by the shadow cache's primitive (the last blocker
+    /// towards the same light on this thread), without a BVH traversal.
+    pub shadow_cache_hits: u64,
     /// Secondary rays not traced because the material has no reflection or transmission
     /// (illumination below `MIRROR`, or `k_s = 0` / `k_t = 0`).
     pub secondary_skipped_material: u64,
@@ -131,6 +134,7 @@ impl TraceStats {
         self.shadow_skipped_off += o.shadow_skipped_off;
         self.light_below_surface += o.light_below_surface;
         self.shadow_blocked += o.shadow_blocked;
+        self.shadow_cache_hits += o.shadow_cache_hits;
         self.secondary_skipped_material += o.secondary_skipped_material;
         self.secondary_skipped_depth += o.secondary_skipped_depth;
         self.secondary_skipped_weight += o.secondary_skipped_weight;
@@ -342,6 +346,11 @@ impl fmt::Display for StatsReport<'_> {
             f,
             "  shadow rays stopped at a blocker  {:>12}",
             s.shadow_blocked
+        )?;
+        writeln!(
+            f,
+            "    by the cached blocker           {:>12}",
+            s.shadow_cache_hits
         )?;
         writeln!(
             f,
