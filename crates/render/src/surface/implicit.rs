@@ -426,8 +426,9 @@ struct RestrictionSlack {
     d_abs: DVec3,
 }
 
-/// Degree up to which a ray whose rounded restriction cannot be certified is restricted in
-/// exact arithmetic (and, if need be, isolated exactly). The exact restriction's coefficients
+/// Degree up to which a ray that neither the rounded restriction nor the double-double one
+/// ([`Implicit`]'s first tier, at any degree) can certify is restricted in exact arithmetic
+/// (and, if need be, isolated exactly). The exact restriction's coefficients
 /// have about `53·N` bits and its cost grows like `terms·N²` big-integer products: measured
 /// in release, tens of µs a Barth (degree 6) ray, but 0.17 s a ray of the degree-64
 /// `scenes/quartic-power64.scene` (153 terms), which made a 32 × 32 render take 46 s instead
@@ -435,8 +436,8 @@ struct RestrictionSlack {
 /// `scenes/torus-sheets16.scene` (165 terms), where most hit rays need it because the
 /// renderer's depth tolerance is finer than the rounded restriction can certify: 9 s for
 /// 100 × 100 pixels, minutes at 840². 12 keeps the degree-12 powers of the tests and every
-/// classic scene (Barth, degree 6: 409 rays of 40 318 at 200², all decided by the second
-/// tier). Above this degree such a ray is counted as undecided instead
+/// classic scene (Barth, degree 6: 409 rays of 40 318 at 200², now all decided by the
+/// double-double tier). Above this degree such a ray is counted as undecided instead
 /// (`TraceStats::surface_certification`) and answered for the rounded restriction.
 pub const EXACT_RESTRICTION_MAX_DEGREE: u32 = 12;
 
