@@ -28,7 +28,9 @@
 use std::cell::Cell;
 
 use crate::bernstein::Bracket;
-use crate::eval_bound::{certified_sign, comp_horner_bounded, horner_derivative_and_bound};
+use crate::eval_bound::{
+    certified_sign, comp_horner_bounded, horner_bounded, horner_derivative_and_bound,
+};
 use crate::univariate::{ETA, UNIT_ROUNDOFF};
 
 /// Lowest degree for which the all-roots queries try inclusion discs before subdivision.
@@ -49,6 +51,13 @@ const MAX_ABERTH_SWEEPS: u32 = 80;
 /// for a simple root; the rest allows a linear start (Wilkinson-20's middle roots start
 /// ≈ 0.1 off, with `p'` good to ~10 %).
 const MAX_POLISH_STEPS: u32 = 8;
+
+/// A real value whose rigorous `f64` error bound is more than `1/COMPENSATE_BELOW` of its
+/// magnitude is recomputed by the compensated Horner scheme (relative). Why 16: above it the
+/// `f64` bound adds at most 6 % to `|p(x)|` (to the disc radius, or to the Newton step's
+/// error), which the compensated value would not improve enough to pay for its fused
+/// multiply–adds (software-emulated on the baseline x86-64 target).
+const COMPENSATE_BELOW: f64 = 16.0;
 
 /// Largest degree handled: the scratch of the iteration and of the certificate is `O(n)`,
 /// the work `O(n²)` per sweep; beyond this subdivision (and its exact fallbacks) answers.
@@ -98,6 +107,22 @@ impl C {
             let d = self.re * t + self.im;
             C::new(t / d, -1.0 / d)
         }
+    }
+    /// `1/self` as `conj(self)/|self|²` (one division) when `|self|²` is a positive
+    /// normal number, else by [`recip`](C::recip): the iteration's inner loop.
+    fn recip_fast(self) -> C {
+        let q = self.re * self.re + self.im * self.im;
+        if q >= f64::MIN_POSITIVE && q.is_finite() {
+            let k = 1.0 / q;
+            C::new(self.re * k, -self.im * k)
+        } else {
+            self.recip()
+        }
+    }
+    /// `max(|re|, |im|)`, within a factor `√2` of `|self|` without a square root: for the
+    /// iteration's stopping tests, which are heuristics.
+    fn norm_max(self) -> f64 {
+        self.re.abs().max(self.im.abs())
     }
     fn div(self, o: C) -> C {
         self.mul(o.recip())
@@ -206,13 +231,14 @@ fn initial_points(c: &[f64], hull: &mut Vec<usize>, z: &mut Vec<C>) -> bool {
     z.len() == n
 }
 
-/// `p(z)`, `p'(z)` by complex Horner, and `S = Σ|cᵢ||z|ⁱ` (plain values, for the iteration).
+/// `p(z)`, `p'(z)` by Horner's rule (complex, or real for a real `z`), plain values for the
+/// iteration, and an estimate of the rounding error of `p(z)`: Horner's bound
+/// `γ(2n)·Σ|cᵢ||z|ⁱ` (Higham eq. 5.3), doubled in the index for complex products. Below it
+/// the iteration cannot improve `z` in `f64` (the noise floor).
 fn horner_c(c: &[f64], z: C) -> (C, C, f64) {
     if z.im == 0.0 {
-        let (v, d, _) = horner_derivative_and_bound(c, z.re, z.re);
-        let ax = z.re.abs();
-        let s = c.iter().rev().fold(0.0, |s, ci| s * ax + ci.abs());
-        return (C::new(v, 0.0), C::new(d, 0.0), s);
+        let (v, d, err) = horner_derivative_and_bound(c, z.re, z.re);
+        return (C::new(v, 0.0), C::new(d, 0.0), err);
     }
     let az = z.abs();
     let (mut v, mut d, mut s) = (C::default(), C::default(), 0.0);
@@ -222,7 +248,7 @@ fn horner_c(c: &[f64], z: C) -> (C, C, f64) {
         v.re += ci;
         s = s * az + ci.abs();
     }
-    (v, d, s)
+    (v, d, gamma_ratio(4 * c.len()) * s)
 }
 
 /// An upper bound on `|p(z)|` for the stored coefficients and the stored `z`, or a
@@ -243,7 +269,12 @@ fn horner_c(c: &[f64], z: C) -> (C, C, f64) {
 fn abs_p_upper(c: &[f64], z: C) -> f64 {
     const EPS: f64 = f64::EPSILON;
     if z.im == 0.0 {
-        let (v, err) = comp_horner_bounded(c, z.re);
+        let (v, err) = horner_bounded(c, z.re);
+        let (v, err) = if v.abs() > COMPENSATE_BELOW * err {
+            (v, err)
+        } else {
+            comp_horner_bounded(c, z.re)
+        };
         return (v.abs() + err) * (1.0 + 2.0 * EPS);
     }
     let az = z.abs() * (1.0 + 2.0 * EPS);
@@ -278,10 +309,6 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
     let n = s.z.len();
     s.done.clear();
     s.done.resize(n, false);
-    // At the noise floor: `|p(z)|` within a rounding-error bound of Horner's rule, `γ(2n)·S`
-    // (Higham eq. 5.3; doubled for complex products): the iteration cannot improve `z`
-    // further in `f64`.
-    let noise = gamma_ratio(4 * c.len());
     for _ in 0..MAX_ABERTH_SWEEPS {
         let mut moving = false;
         for i in 0..n {
@@ -289,11 +316,11 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
                 continue;
             }
             let zi = s.z[i];
-            let (p, dp, abs_sum) = horner_c(c, zi);
-            if !(p.is_finite() && dp.is_finite() && abs_sum.is_finite()) {
+            let (p, dp, noise) = horner_c(c, zi);
+            if !(p.is_finite() && dp.is_finite() && noise.is_finite()) {
                 return false;
             }
-            if p.abs() <= noise * abs_sum {
+            if p.norm_max() <= noise {
                 s.done[i] = true;
                 continue;
             }
@@ -302,7 +329,7 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
             let mut sum = C::default();
             for (j, &zj) in s.z.iter().enumerate() {
                 if j != i {
-                    sum = sum.add(zi.sub(zj).recip());
+                    sum = sum.add(zi.sub(zj).recip_fast());
                 }
             }
             let w = newton.div(C::new(1.0, 0.0).sub(newton.mul(sum)));
@@ -311,7 +338,7 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
             }
             let next = zi.sub(w);
             s.z[i] = next;
-            if w.abs() <= 2.0 * f64::EPSILON * next.abs() {
+            if w.norm_max() <= f64::EPSILON * next.norm_max() {
                 s.done[i] = true;
             } else {
                 moving = true;
@@ -328,8 +355,8 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
             // radius `n·max(|p|, noise)/|p'|`: a real root's approximation ends there; a
             // non-real root so close to the axis is caught by the certificate (its disc and
             // its conjugate's overlap, or the two real approximations coincide).
-            let (p, dp, abs_sum) = horner_c(c, z);
-            let reach = n as f64 * p.abs().max(noise * abs_sum) / dp.abs();
+            let (p, dp, noise) = horner_c(c, z);
+            let reach = n as f64 * p.abs().max(noise) / dp.abs();
             if z.im.abs() <= reach {
                 s.z[i] = C::new(z.re, 0.0);
             }
@@ -358,17 +385,24 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
                 continue;
             }
             let x = s.z[i].re;
-            let (v, err) = comp_horner_bounded(c, x);
-            if v.abs() <= err {
-                s.done[i] = true;
-                continue;
-            }
-            let (_, d, _) = horner_derivative_and_bound(c, x, x);
+            let (v, d, err) = horner_derivative_and_bound(c, x, x);
+            // The compensated value only where `f64`'s is mostly noise (it costs several
+            // Horner passes: its error-free products are fused multiply–adds).
+            let v = if v.abs() > COMPENSATE_BELOW * err {
+                v
+            } else {
+                let (v, err) = comp_horner_bounded(c, x);
+                if v.abs() <= err {
+                    s.done[i] = true;
+                    continue;
+                }
+                v
+            };
             let newton = v / d;
             let mut sum = 0.0;
             for (j, &zj) in s.z.iter().enumerate() {
                 if j != i {
-                    sum += C::new(x, 0.0).sub(zj).recip().re;
+                    sum += C::new(x, 0.0).sub(zj).recip_fast().re;
                 }
             }
             let next = x - newton / (1.0 - newton * sum);
@@ -477,11 +511,9 @@ fn certify(c: &[f64], s: &mut Scratch) -> bool {
 fn discs_apart(a: C, ra: f64, b: C, rb: f64) -> bool {
     let d = a.sub(b);
     let q = d.re * d.re + d.im * d.im;
-    if q.is_infinite() {
-        // The centres are further apart than f64::MAX and the radii finite.
-        return true;
-    }
-    if !(q >= MIN_DISTANCE) {
+    // Too close to tell, or too far to compare in `f64` (an infinite `q` says nothing
+    // about `(ra + rb)²`, which may overflow too): not certainly apart.
+    if !(q >= MIN_DISTANCE && q.is_finite()) {
         return false;
     }
     let t = (ra + rb) * (1.0 + 2.0 * f64::EPSILON);
