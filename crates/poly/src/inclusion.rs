@@ -108,22 +108,6 @@ impl C {
             C::new(t / d, -1.0 / d)
         }
     }
-    /// `1/self` as `conj(self)/|self|²` (one division) when `|self|²` is a positive
-    /// normal number, else by [`recip`](C::recip): the iteration's inner loop.
-    fn recip_fast(self) -> C {
-        let q = self.re * self.re + self.im * self.im;
-        if q >= f64::MIN_POSITIVE && q.is_finite() {
-            let k = 1.0 / q;
-            C::new(self.re * k, -self.im * k)
-        } else {
-            self.recip()
-        }
-    }
-    /// `max(|re|, |im|)`, within a factor `√2` of `|self|` without a square root: for the
-    /// iteration's stopping tests, which are heuristics.
-    fn norm_max(self) -> f64 {
-        self.re.abs().max(self.im.abs())
-    }
     fn div(self, o: C) -> C {
         self.mul(o.recip())
     }
@@ -174,7 +158,10 @@ thread_local! {
 /// certificate.
 pub(crate) fn real_brackets(c: &[f64], lo: f64, hi: f64, mut emit: impl FnMut(Bracket)) -> bool {
     let n = c.len().saturating_sub(1);
-    if !(1..=MAX_DEGREE).contains(&n) || c[n] == 0.0 || !(lo < hi) {
+    if !(1..=MAX_DEGREE).contains(&n)
+        || c[n] == 0.0
+        || lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less)
+    {
         return false;
     }
     let mut s = SCRATCH.take();
@@ -233,12 +220,13 @@ fn initial_points(c: &[f64], hull: &mut Vec<usize>, z: &mut Vec<C>) -> bool {
 
 /// `p(z)`, `p'(z)` by Horner's rule (complex, or real for a real `z`), plain values for the
 /// iteration, and an estimate of the rounding error of `p(z)`: Horner's bound
-/// `γ(2n)·Σ|cᵢ||z|ⁱ` (Higham eq. 5.3), doubled in the index for complex products. Below it
+/// `γ(2n)·Σ|cᵢ||z|ⁱ` (Higham eq. 5.3), doubled (in the index for complex products). Below it
 /// the iteration cannot improve `z` in `f64` (the noise floor).
+#[inline]
 fn horner_c(c: &[f64], z: C) -> (C, C, f64) {
     if z.im == 0.0 {
         let (v, d, err) = horner_derivative_and_bound(c, z.re, z.re);
-        return (C::new(v, 0.0), C::new(d, 0.0), err);
+        return (C::new(v, 0.0), C::new(d, 0.0), 2.0 * err);
     }
     let az = z.abs();
     let (mut v, mut d, mut s) = (C::default(), C::default(), 0.0);
@@ -320,7 +308,7 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
             if !(p.is_finite() && dp.is_finite() && noise.is_finite()) {
                 return false;
             }
-            if p.norm_max() <= noise {
+            if p.abs() <= noise {
                 s.done[i] = true;
                 continue;
             }
@@ -329,7 +317,7 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
             let mut sum = C::default();
             for (j, &zj) in s.z.iter().enumerate() {
                 if j != i {
-                    sum = sum.add(zi.sub(zj).recip_fast());
+                    sum = sum.add(zi.sub(zj).recip());
                 }
             }
             let w = newton.div(C::new(1.0, 0.0).sub(newton.mul(sum)));
@@ -338,7 +326,7 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
             }
             let next = zi.sub(w);
             s.z[i] = next;
-            if w.norm_max() <= f64::EPSILON * next.norm_max() {
+            if w.abs() <= 2.0 * f64::EPSILON * next.abs() {
                 s.done[i] = true;
             } else {
                 moving = true;
@@ -385,24 +373,17 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
                 continue;
             }
             let x = s.z[i].re;
-            let (v, d, err) = horner_derivative_and_bound(c, x, x);
-            // The compensated value only where `f64`'s is mostly noise (it costs several
-            // Horner passes: its error-free products are fused multiply–adds).
-            let v = if v.abs() > COMPENSATE_BELOW * err {
-                v
-            } else {
-                let (v, err) = comp_horner_bounded(c, x);
-                if v.abs() <= err {
-                    s.done[i] = true;
-                    continue;
-                }
-                v
-            };
+            let (v, err) = comp_horner_bounded(c, x);
+            if v.abs() <= err {
+                s.done[i] = true;
+                continue;
+            }
+            let (_, d, _) = horner_derivative_and_bound(c, x, x);
             let newton = v / d;
             let mut sum = 0.0;
             for (j, &zj) in s.z.iter().enumerate() {
                 if j != i {
-                    sum += C::new(x, 0.0).sub(zj).recip_fast().re;
+                    sum += C::new(x, 0.0).sub(zj).recip().re;
                 }
             }
             let next = x - newton / (1.0 - newton * sum);
