@@ -1212,21 +1212,6 @@ mod tests {
         }
     }
 
-    /// The subdivision path alone on `(lo, hi]` (the all-roots queries try inclusion discs
-    /// first, `inclusion.rs`, which decide these polynomials without any tier): how many
-    /// roots it isolated, its statistics in `stats`.
-    fn subdivision_count(p: &Poly<f64>, lo: f64, hi: f64, stats: &mut RootStats) -> usize {
-        let search = crate::certified::CertifiedSearch::run(
-            p,
-            lo,
-            hi,
-            false,
-            crate::query::Slack::NONE,
-            stats,
-        );
-        search.found.len()
-    }
-
     /// The product of `(x − rᵢ)` when every coefficient is exact in `f64` (dyadic roots with
     /// few bits), else `None`.
     fn exact_product(roots: &[f64]) -> Option<Poly<f64>> {
@@ -1257,7 +1242,7 @@ mod tests {
         let w = wilkinson(20).to_f64();
         check_all(&w, 0.0, 21.0, 1e-10, &mut stats);
         assert_eq!(
-            subdivision_count(&w, 0.0, 21.0, &mut stats),
+            w.subdivision_root_count(0.0, 21.0, &mut stats),
             20,
             "subdivision isolates the 20 roots"
         );
@@ -1281,7 +1266,7 @@ mod tests {
                 .unwrap()
                 .len();
             assert_eq!(
-                subdivision_count(&p, -b, b, &mut stats),
+                p.subdivision_root_count(-b, b, &mut stats),
                 want,
                 "Kac-20 seed {seed}: subdivision agrees"
             );
@@ -1400,7 +1385,7 @@ mod tests {
                 "{roots:?}"
             );
             assert_eq!(
-                subdivision_count(&p, lo, hi, &mut stats),
+                p.subdivision_root_count(lo, hi, &mut stats),
                 2,
                 "subdivision isolates both roots on ({lo}, {hi}]"
             );
