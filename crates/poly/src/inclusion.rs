@@ -34,9 +34,11 @@ use crate::eval_bound::{
 use crate::univariate::{ETA, UNIT_ROUNDOFF};
 
 /// Lowest degree for which the all-roots queries try inclusion discs before subdivision.
-/// Why this value: on the planted corpus of degree 3–20 the disc path is cheaper than the
-/// Bernstein run from degree 3 on (`paper-notes/isolation.md`, "Inclusion discs");
-/// quadratics and lines have closed forms or one-node Bernstein runs that it cannot beat.
+/// Why this value: measured on whole corpora only (callgrind, `paper-notes/isolation.md`,
+/// "Inclusion discs before subdivision"): the planted corpus of degree 3–20 takes 0.86 of
+/// its instructions with the discs tried from degree 3 on; no per-degree split was measured,
+/// so the threshold is the lowest degree without a closed form or a one-node Bernstein run
+/// (lines and quadratics), not a measured crossover.
 pub(crate) const INCLUSION_MIN_DEGREE: usize = 3;
 
 /// Most Aberth sweeps over the approximations before the path gives up (the query then goes
