@@ -139,6 +139,27 @@ struct Scratch {
     hull: Vec<usize>,
 }
 
+impl Scratch {
+    /// Capacity for degree `max(n, SCRATCH_MIN_DEGREE)` in every buffer, so that a later,
+    /// larger query up to that degree does not allocate (the tracer's per-ray queries, whose
+    /// degrees vary from ray to ray, must not allocate after a warm-up:
+    /// `crates/render/tests/bezier_no_alloc.rs`).
+    fn reserve(&mut self, n: usize) {
+        let m = n.max(SCRATCH_MIN_DEGREE) + 1;
+        self.z.reserve(m.saturating_sub(self.z.len()));
+        self.done.reserve(m.saturating_sub(self.done.len()));
+        self.radius.reserve(m.saturating_sub(self.radius.len()));
+        self.shadow.reserve(m.saturating_sub(self.shadow.len()));
+        self.brackets.reserve(m.saturating_sub(self.brackets.len()));
+        self.hull.reserve(m.saturating_sub(self.hull.len()));
+    }
+}
+
+/// Degree for which the per-thread buffers are sized at their first use: above the degrees
+/// of the tracer's per-ray polynomials (Kajiya resultants of bicubic patches: 18), so that
+/// their queries never grow a buffer after the first.
+const SCRATCH_MIN_DEGREE: usize = 64;
+
 thread_local! {
     static SCRATCH: Cell<Scratch> = Cell::new(Scratch::default());
 }
@@ -167,6 +188,7 @@ pub(crate) fn real_brackets(c: &[f64], lo: f64, hi: f64, mut emit: impl FnMut(Br
         return false;
     }
     let mut s = SCRATCH.take();
+    s.reserve(n);
     let decided = approximate(c, &mut s) && certify(c, &mut s) && decide(c, lo, hi, &mut s);
     if decided {
         for b in &s.brackets {
