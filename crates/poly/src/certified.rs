@@ -374,6 +374,18 @@ fn split_point(c: &[f64], lo: f64, hi: f64, slack: f64) -> Option<(f64, i8)> {
 }
 
 #[cfg(test)]
+impl Poly<f64> {
+    /// How many roots the subdivision path alone isolates on `(lo, hi]`, its statistics in
+    /// `stats`: for tests of its tiers, since the all-roots queries try inclusion discs
+    /// first (`inclusion.rs`) and these decide many polynomials without any tier.
+    pub(crate) fn subdivision_root_count(&self, lo: f64, hi: f64, stats: &mut RootStats) -> usize {
+        CertifiedSearch::run(self, lo, hi, false, Slack::NONE, stats)
+            .found
+            .len()
+    }
+}
+
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::root_options::RootOptions;

@@ -19,6 +19,7 @@ use crate::certified::{CertifiedSearch, Found, end_signs};
 use crate::closed_form::{linear_smallest, quadratic_smallest};
 use crate::eval_bound::certified_sign;
 use crate::exact_oracle::{ExactOracle, SquareFreeSign};
+use crate::inclusion::{INCLUSION_MIN_DEGREE, real_brackets};
 use crate::multiprec::refine_wide;
 use crate::query::{Slack, with_scratch_poly};
 use crate::refine::{Refined, bisect_rational_to_f64, half_tol, refine_bracket, refine_exact_f64};
@@ -440,6 +441,18 @@ impl Poly<f64> {
                 })
             });
         }
+        if inclusion_first(
+            self,
+            a,
+            b,
+            opts,
+            Slack::NONE,
+            stats,
+            |_, b, _| RootInterval { lo: b.lo, hi: b.hi },
+            out,
+        )? {
+            return Ok(());
+        }
         match self.isolate_inner(a, b, opts, Slack::NONE, stats)? {
             Isolation::Certified(search) => {
                 out.extend(search.found.into_iter().map(|f| match f {
@@ -572,6 +585,12 @@ impl Poly<f64> {
                 })
             });
         }
+        let refine = |p: &Poly<f64>, b, s: &mut RootStats| {
+            refine_certified(p, b, opts.tolerance(), opts.refine, s)
+        };
+        if inclusion_first(self, a, b, opts, slack, stats, refine, out)? {
+            return Ok(());
+        }
         match self.isolate_inner(a, b, opts, slack, stats)? {
             Isolation::Certified(search) => {
                 if let Some((lo, hi)) = search.slack_limited {
@@ -643,6 +662,44 @@ impl Poly<f64> {
             },
         })
     }
+}
+
+/// The all-roots queries' first try (issue 11): inclusion discs around simultaneous
+/// approximations of every root (`inclusion.rs`), for the default certified method without
+/// a value slack from degree [`INCLUSION_MIN_DEGREE`] on. `Ok(true)` when they decided every
+/// root of `(a, b]`: each bracket went through `emit` into `out`, in order. `Ok(false)`
+/// leaves `out` alone and the caller answers by subdivision; both outcomes are counted
+/// ([`RootStats::inclusion_decided`], [`RootStats::inclusion_undecided`]).
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the query's parts, passed through"
+)]
+fn inclusion_first<V>(
+    p: &Poly<f64>,
+    a: f64,
+    b: f64,
+    opts: &RootOptions,
+    slack: Slack<'_>,
+    stats: &mut RootStats,
+    mut emit: impl FnMut(&Poly<f64>, Bracket, &mut RootStats) -> V,
+    out: &mut Vec<V>,
+) -> Result<bool, RootError> {
+    if opts.isolation != IsolationMethod::Bernstein
+        || slack.is_some()
+        || p.degree() < INCLUSION_MIN_DEGREE
+    {
+        return Ok(false);
+    }
+    let Range::Search { lo, hi } = prepare(p, a, b, opts)? else {
+        return Ok(false);
+    };
+    let decided = real_brackets(p.coeffs(), lo, hi, |br| out.push(emit(p, br, stats)));
+    if decided {
+        stats.inclusion_decided += 1;
+    } else {
+        stats.inclusion_undecided += 1;
+    }
+    Ok(decided)
 }
 
 /// The isolation result, before conversion or refinement.

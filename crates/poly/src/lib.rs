@@ -65,6 +65,7 @@ mod double_double;
 mod eval_bound;
 mod exact_bisection;
 mod exact_oracle;
+mod inclusion;
 mod int_poly;
 mod isolate;
 mod multiprec;

@@ -1239,7 +1239,13 @@ mod tests {
     #[test]
     fn wilkinson_and_kac_take_the_adaptive_path_not_the_exact_one() {
         let mut stats = RootStats::default();
-        check_all(&wilkinson(20).to_f64(), 0.0, 21.0, 1e-10, &mut stats);
+        let w = wilkinson(20).to_f64();
+        check_all(&w, 0.0, 21.0, 1e-10, &mut stats);
+        assert_eq!(
+            w.subdivision_root_count(0.0, 21.0, &mut stats),
+            20,
+            "subdivision isolates the 20 roots"
+        );
         assert!(
             stats.adaptive_pieces > 0,
             "Wilkinson-20 went adaptive: {stats:?}"
@@ -1254,6 +1260,16 @@ mod tests {
             let p = kac(20, seed);
             let b = p.root_bound().unwrap();
             check_all(&p, -b, b, 1e-12, &mut stats);
+            let mut truth = RootStats::default();
+            let want = p
+                .real_roots_with(-b, b, &RootOptions::new(1e-12), &mut truth)
+                .unwrap()
+                .len();
+            assert_eq!(
+                p.subdivision_root_count(-b, b, &mut stats),
+                want,
+                "Kac-20 seed {seed}: subdivision agrees"
+            );
         }
         assert!(
             stats.adaptive_pieces > 0,
@@ -1367,6 +1383,11 @@ mod tests {
             assert!(
                 (roots[0] + r).abs() <= 1e-12 && (roots[1] - r).abs() <= 1e-12,
                 "{roots:?}"
+            );
+            assert_eq!(
+                p.subdivision_root_count(lo, hi, &mut stats),
+                2,
+                "subdivision isolates both roots on ({lo}, {hi}]"
             );
             assert_eq!(stats.exact_fallbacks, 0, "no exact sequence: {stats:?}");
             assert!(

@@ -66,6 +66,14 @@ pub struct RootStats {
     pub subdivisions: u64,
     /// Polynomial evaluations during refinement.
     pub refine_evals: u64,
+    /// All-roots queries (and their pieces around an exact root 0) whose real roots the
+    /// inclusion discs decided (`inclusion.rs`; `paper-notes/isolation.md`, "Inclusion
+    /// discs"), without any subdivision.
+    pub inclusion_decided: u64,
+    /// All-roots queries (or pieces) that tried the inclusion discs, were left undecided
+    /// (overlapping discs, a non-real disc meeting the range, an uncertain sign, no
+    /// convergence) and were answered by subdivision.
+    pub inclusion_undecided: u64,
 }
 
 impl RootStats {
@@ -87,6 +95,8 @@ impl RootStats {
         self.slack_limited += other.slack_limited;
         self.subdivisions += other.subdivisions;
         self.refine_evals += other.refine_evals;
+        self.inclusion_decided += other.inclusion_decided;
+        self.inclusion_undecided += other.inclusion_undecided;
     }
 
     /// Fraction of queries that fell back to exact isolation (0 when there were no queries).
@@ -148,6 +158,8 @@ mod tests {
         a.count_query(4);
         a.count_query(40);
         a.exact_fallbacks = 1;
+        a.inclusion_decided = 5;
+        a.inclusion_undecided = 6;
         let mut b = a.clone();
         b.subdivisions = 7;
         b.refine_evals = 3;
@@ -172,6 +184,11 @@ mod tests {
             ),
             (2, 1, 4),
             "adaptive counters kept"
+        );
+        assert_eq!(
+            (b.inclusion_decided, b.inclusion_undecided),
+            (10, 12),
+            "inclusion counters summed"
         );
         assert_eq!(b.fallback_rate(), 0.5, "2 of 4");
         let mut c = RootStats::default();

@@ -1,0 +1,756 @@
+//! Certified isolation of all real roots by simultaneous iteration and inclusion discs (the
+//! MPSolve approach: Bini & Fiorentino, "Design, analysis, and implementation of a
+//! multiprecision polynomial rootfinder", Numer. Algorithms 23, 2000), tried before the
+//! Bernstein subdivision for the all-roots queries (`paper-notes/isolation.md`, "Inclusion
+//! discs").
+//!
+//! Three steps, only the last of which must be right for the answer to be right:
+//! 1. *Approximate* every complex root at once: Aberth–Ehrlich iteration in `f64` complex
+//!    arithmetic from starting points on the circles of the Newton polygon (Bini, "Numerical
+//!    computation of polynomial zeros by means of Aberth's method", Numer. Algorithms 13,
+//!    1996); approximations that end near the real axis are made exactly real and polished by
+//!    Newton's method with the compensated Horner value (twice the working precision).
+//! 2. *Enclose*: with `z₁ … zₙ` pairwise distinct, every root of `p` lies in the union of the
+//!    discs `D(zᵢ, rᵢ)`, `rᵢ ≥ n·|p(zᵢ)| / (|aₙ|·∏_{j≠i}|zᵢ − zⱼ|)`, and each connected
+//!    component of `m` discs holds exactly `m` roots counted with multiplicity (Bini &
+//!    Fiorentino 2000, Theorem 9; Neumaier, "Enclosing clusters of zeros of polynomials",
+//!    J. Comput. Appl. Math. 156, 2003). The radii here are *upper* bounds: every rounding of
+//!    `|p(zᵢ)|`, of the distances and of the product is bounded explicitly.
+//! 3. *Decide the real roots*: a disc with a real centre that meets no other disc holds
+//!    exactly one root, and it is real (a non-real root would bring its conjugate into the
+//!    same disc, which is symmetric about the axis). Every real root lies in the real shadow
+//!    `[Re zᵢ − rᵢ, Re zᵢ + rᵢ]` of some disc meeting the axis; when every shadow that meets
+//!    the query range belongs to such a disc and meets no other shadow, the roots in the range
+//!    are exactly those shadows' roots, and certified end signs turn each into a bracket.
+//!    Anything else (overlapping discs, a non-real disc touching the range, a sign that
+//!    cannot be certified) is *undecided*: the caller answers the whole query by subdivision.
+
+use std::cell::Cell;
+
+use crate::bernstein::Bracket;
+use crate::eval_bound::{
+    certified_sign, comp_horner_bounded, horner_bounded, horner_derivative_and_bound,
+};
+use crate::univariate::{ETA, UNIT_ROUNDOFF};
+
+/// Lowest degree for which the all-roots queries try inclusion discs before subdivision.
+/// Why this value: measured on whole corpora only (callgrind, `paper-notes/isolation.md`,
+/// "Inclusion discs before subdivision"): the planted corpus of degree 3–20 takes 0.86 of
+/// its instructions with the discs tried from degree 3 on; no per-degree split was measured,
+/// so the threshold is the lowest degree without a closed form or a one-node Bernstein run
+/// (lines and quadratics), not a measured crossover.
+pub(crate) const INCLUSION_MIN_DEGREE: usize = 3;
+
+/// Most Aberth sweeps over the approximations before the path gives up (the query then goes
+/// to subdivision). Aberth's iteration converges cubically to simple roots once close; from
+/// the Newton-polygon start the measured corpora (Kac, Chebyshev, planted to degree 160,
+/// Wilkinson-20) need at most a few tens of sweeps, so 80 only cuts off the hopeless
+/// cases (clusters, multiple roots, polynomials whose `f64` values are all noise).
+const MAX_ABERTH_SWEEPS: u32 = 80;
+
+/// Most Newton steps of the polish of one real approximation with compensated Horner values.
+/// Convergence from an `f64`-accurate start to the compensated noise floor takes 1–3 steps
+/// for a simple root; the rest allows a linear start (Wilkinson-20's middle roots start
+/// ≈ 0.1 off, with `p'` good to ~10 %).
+const MAX_POLISH_STEPS: u32 = 8;
+
+/// A real value whose rigorous `f64` error bound is more than `1/COMPENSATE_BELOW` of its
+/// magnitude is recomputed by the compensated Horner scheme (relative). Why 16: above it the
+/// `f64` bound adds at most 6 % to `|p(x)|` (to the disc radius, or to the Newton step's
+/// error), which the compensated value would not improve enough to pay for its fused
+/// multiply–adds (software-emulated on the baseline x86-64 target).
+const COMPENSATE_BELOW: f64 = 16.0;
+
+/// Largest degree handled: the scratch of the iteration and of the certificate is `O(n)`,
+/// the work `O(n²)` per sweep; beyond this subdivision (and its exact fallbacks) answers.
+/// Why 1024: the disc radii carry a rounding factor `(1 + (4n + 16)ε)`, which must stay
+/// near 1, and the product of `n − 1` distances is renormalised each step so any `n` works;
+/// the bound only keeps one query's work within milliseconds.
+const MAX_DEGREE: usize = 1024;
+
+/// Smallest distance between two centres (each coordinate difference) that the certificate
+/// uses: `2^-900`. Below it products of distances could leave the normal range, where the
+/// relative rounding bounds used for them fail; such approximations are treated as not
+/// distinct (undecided).
+const MIN_DISTANCE: f64 = f64::from_bits((1023 - 900) << 52);
+
+/// A complex number in `f64`, for the approximations.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct C {
+    re: f64,
+    im: f64,
+}
+
+impl C {
+    fn new(re: f64, im: f64) -> C {
+        C { re, im }
+    }
+    fn add(self, o: C) -> C {
+        C::new(self.re + o.re, self.im + o.im)
+    }
+    fn sub(self, o: C) -> C {
+        C::new(self.re - o.re, self.im - o.im)
+    }
+    fn mul(self, o: C) -> C {
+        C::new(
+            self.re * o.re - self.im * o.im,
+            self.re * o.im + self.im * o.re,
+        )
+    }
+    /// `1/self` by scaling with the larger part (Smith's rule), so that neither the square
+    /// of a tiny nor of a huge part over- or underflows.
+    fn recip(self) -> C {
+        if self.re.abs() >= self.im.abs() {
+            let t = self.im / self.re;
+            let d = self.re + self.im * t;
+            C::new(1.0 / d, -t / d)
+        } else {
+            let t = self.re / self.im;
+            let d = self.re * t + self.im;
+            C::new(t / d, -1.0 / d)
+        }
+    }
+    fn div(self, o: C) -> C {
+        self.mul(o.recip())
+    }
+    fn abs(self) -> f64 {
+        self.re.hypot(self.im)
+    }
+    fn is_finite(self) -> bool {
+        self.re.is_finite() && self.im.is_finite()
+    }
+}
+
+/// Reused per-thread buffers, so that the tracer's per-ray all-roots queries allocate
+/// nothing once they have grown.
+#[derive(Default)]
+struct Scratch {
+    /// The approximations `zᵢ`.
+    z: Vec<C>,
+    /// Whether `zᵢ` has stopped moving (converged or at the noise floor).
+    done: Vec<bool>,
+    /// Upper bounds on the inclusion radii.
+    radius: Vec<f64>,
+    /// Real shadows `[lo, hi]` of the discs meeting the real axis (NaN ends: none).
+    shadow: Vec<(f64, f64)>,
+    /// The brackets found, before they are handed to the caller.
+    brackets: Vec<Bracket>,
+    /// Indices of the Newton polygon's vertices.
+    hull: Vec<usize>,
+}
+
+impl Scratch {
+    /// Capacity for degree `max(n, SCRATCH_MIN_DEGREE)` in every buffer, so that a later,
+    /// larger query up to that degree does not allocate (the tracer's per-ray queries, whose
+    /// degrees vary from ray to ray, must not allocate after a warm-up:
+    /// `crates/render/tests/bezier_no_alloc.rs`).
+    fn reserve(&mut self, n: usize) {
+        let m = n.max(SCRATCH_MIN_DEGREE) + 1;
+        self.z.reserve(m.saturating_sub(self.z.len()));
+        self.done.reserve(m.saturating_sub(self.done.len()));
+        self.radius.reserve(m.saturating_sub(self.radius.len()));
+        self.shadow.reserve(m.saturating_sub(self.shadow.len()));
+        self.brackets.reserve(m.saturating_sub(self.brackets.len()));
+        self.hull.reserve(m.saturating_sub(self.hull.len()));
+    }
+}
+
+/// Degree for which the per-thread buffers are sized at their first use: above the degrees
+/// of the tracer's per-ray polynomials (Kajiya resultants of bicubic patches: 18), so that
+/// their queries never grow a buffer after the first.
+const SCRATCH_MIN_DEGREE: usize = 64;
+
+thread_local! {
+    static SCRATCH: Cell<Scratch> = Cell::new(Scratch::default());
+}
+
+/// Certified brackets of every distinct real root of `c` (coefficients lowest degree first)
+/// in `(lo, hi]`, by inclusion discs; each bracket is handed to `emit`, in increasing order.
+/// Returns `false`, having emitted nothing, when the discs do not decide every root of the
+/// range (the caller then answers by subdivision).
+///
+/// # Accuracy
+/// Certified, when it returns `true`: each bracket `(lo', hi')` holds exactly one root of
+/// the stored polynomial, simple, with certified opposite signs at its ends (`s_lo` that of
+/// `p(lo')`), and the roots of `(lo, hi]` are exactly those of the brackets. `lo < hi`,
+/// finite coefficients, `c[n] ≠ 0` and `n ≥ 1` are assumed by the caller's validation;
+/// anything else returns `false`.
+///
+/// # Complexity
+/// `O(n²)` per Aberth sweep, at most [`MAX_ABERTH_SWEEPS`] sweeps; `O(n²)` for the
+/// certificate.
+pub(crate) fn real_brackets(c: &[f64], lo: f64, hi: f64, mut emit: impl FnMut(Bracket)) -> bool {
+    let n = c.len().saturating_sub(1);
+    if !(1..=MAX_DEGREE).contains(&n)
+        || c[n] == 0.0
+        || lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less)
+    {
+        return false;
+    }
+    let mut s = SCRATCH.take();
+    s.reserve(n);
+    let decided = approximate(c, &mut s) && certify(c, &mut s) && decide(c, lo, hi, &mut s);
+    if decided {
+        for b in &s.brackets {
+            emit(*b);
+        }
+    }
+    SCRATCH.set(s);
+    decided
+}
+
+/// Starting points on the circles of the Newton polygon (Bini 1996, §3): the upper convex
+/// hull of the points `(i, log₂|aᵢ|)`; an edge from `i` to `j` holds `j − i` roots of
+/// modulus about `(|aᵢ|/|aⱼ|)^{1/(j−i)}`, spread evenly on that circle with an offset angle.
+/// A heuristic: only the certificate's radii matter for correctness. `false` when a circle's
+/// radius is not a positive finite number or `a₀ = 0` (fewer than `n` points).
+fn initial_points(c: &[f64], hull: &mut Vec<usize>, z: &mut Vec<C>) -> bool {
+    let n = c.len() - 1;
+    let log = |i: usize| c[i].abs().log2();
+    // Andrew's monotone chain, upper part, over the non-zero coefficients.
+    hull.clear();
+    for i in (0..=n).filter(|&i| c[i] != 0.0) {
+        let li = log(i);
+        while let [.., a, b] = hull[..] {
+            // Drop b when it lies on or below the segment from a to i.
+            let (la, lb) = (log(a), log(b));
+            if (b - a) as f64 * (li - la) - (i - a) as f64 * (lb - la) >= 0.0 {
+                hull.pop();
+            } else {
+                break;
+            }
+        }
+        hull.push(i);
+    }
+    // Offset angle σ = 0.7 (Bini 1996): keeps the starting points off the real axis, where
+    // conjugate-symmetric starts would never leave it.
+    const SIGMA: f64 = 0.7;
+    let tau = std::f64::consts::TAU;
+    z.clear();
+    for e in hull.windows(2) {
+        let (i, j) = (e[0], e[1]);
+        let k = j - i;
+        let radius = ((log(i) - log(j)) / k as f64).exp2();
+        if !(radius.is_finite() && radius > 0.0) {
+            return false;
+        }
+        for l in 0..k {
+            let angle = tau * l as f64 / k as f64 + tau * i as f64 / n as f64 + SIGMA;
+            z.push(C::new(radius * angle.cos(), radius * angle.sin()));
+        }
+    }
+    z.len() == n
+}
+
+/// `p(z)`, `p'(z)` by Horner's rule (complex, or real for a real `z`), plain values for the
+/// iteration, and an estimate of the rounding error of `p(z)`: Horner's bound
+/// `γ(2n)·Σ|cᵢ||z|ⁱ` (Higham eq. 5.3), doubled (in the index for complex products). Below it
+/// the iteration cannot improve `z` in `f64` (the noise floor).
+#[inline]
+fn horner_c(c: &[f64], z: C) -> (C, C, f64) {
+    if z.im == 0.0 {
+        let (v, d, err) = horner_derivative_and_bound(c, z.re, z.re);
+        return (C::new(v, 0.0), C::new(d, 0.0), 2.0 * err);
+    }
+    let az = z.abs();
+    let (mut v, mut d, mut s) = (C::default(), C::default(), 0.0);
+    for &ci in c.iter().rev() {
+        d = d.mul(z).add(v);
+        v = v.mul(z);
+        v.re += ci;
+        s = s * az + ci.abs();
+    }
+    (v, d, gamma_ratio(4 * c.len()) * s)
+}
+
+/// An upper bound on `|p(z)|` for the stored coefficients and the stored `z`, or a
+/// non-finite number when overflow makes it useless.
+///
+/// # Accuracy
+/// Real `z`: the compensated Horner value and its rigorous bound (`eval_bound.rs`),
+/// `|v| + err`, rounded up. Non-real `z`: complex Horner, where each step is a complex
+/// product, `fl(x·y) = x·y(1 + δ)`, `|δ| ≤ √2·γ₂ < 3u` (Higham, *Accuracy and Stability of
+/// Numerical Algorithms*, 2nd ed., Lemma 3.5; no fused operations), and the addition of a
+/// real coefficient, which rounds the real part only: `(t + c)(1 + η)`, `|η| ≤ u`. The term
+/// `cᵢzⁱ` so carries at most `(1 + u)^{4n+1}` relative error, and
+/// `|v − p(z)| ≤ γ(4n + 1)·Σ|cᵢ||z|ⁱ`; with `len = n + 1` the bound below uses
+/// `γ(6·len)/(1 − γ(6·len))` (the ratio covers the rounding of `S` itself, computed with `|z|`
+/// rounded up), `(1 + 8ε)` the roundings of the bound, and `8η·Σ|z|ⁱ` the underflow of the
+/// four real products per step (each off by at most `η/2` absolutely, carried forward by
+/// powers of `|z|`). `|v|` is bounded by `|Re v| + |Im v|`.
+fn abs_p_upper(c: &[f64], z: C) -> f64 {
+    const EPS: f64 = f64::EPSILON;
+    if z.im == 0.0 {
+        let (v, err) = horner_bounded(c, z.re);
+        let (v, err) = if v.abs() > COMPENSATE_BELOW * err {
+            (v, err)
+        } else {
+            comp_horner_bounded(c, z.re)
+        };
+        return (v.abs() + err) * (1.0 + 2.0 * EPS);
+    }
+    let az = z.abs() * (1.0 + 2.0 * EPS);
+    let (mut v, mut s, mut w) = (C::default(), 0.0f64, 0.0f64);
+    for &ci in c.iter().rev() {
+        v = v.mul(z);
+        v.re += ci;
+        s = s * az + ci.abs();
+        w = w * az + 1.0;
+    }
+    let err = gamma_ratio(6 * c.len()) * s * (1.0 + 8.0 * EPS) + 8.0 * ETA * w;
+    (v.re.abs() + v.im.abs() + err) * (1.0 + 4.0 * EPS)
+}
+
+/// `γ(k)/(1 − γ(k))` rounded up, `γ(k) = k·u/(1 − k·u)` (Higham §3.1), infinite when
+/// `k·u ≥ 1/4` (no bound).
+fn gamma_ratio(k: usize) -> f64 {
+    let ku = k as f64 * UNIT_ROUNDOFF;
+    if ku >= 0.25 {
+        return f64::INFINITY;
+    }
+    ku / (1.0 - 2.0 * ku) * (1.0 + 4.0 * f64::EPSILON)
+}
+
+/// Step 1: Aberth–Ehrlich iteration (Gauss–Seidel sweeps), then the real polish. `false`
+/// when a value overflowed or the start failed; convergence itself is not required (the
+/// certificate judges the result).
+fn approximate(c: &[f64], s: &mut Scratch) -> bool {
+    if !initial_points(c, &mut s.hull, &mut s.z) {
+        return false;
+    }
+    let n = s.z.len();
+    s.done.clear();
+    s.done.resize(n, false);
+    for _ in 0..MAX_ABERTH_SWEEPS {
+        let mut moving = false;
+        for i in 0..n {
+            if s.done[i] {
+                continue;
+            }
+            let zi = s.z[i];
+            let (p, dp, noise) = horner_c(c, zi);
+            if !(p.is_finite() && dp.is_finite() && noise.is_finite()) {
+                return false;
+            }
+            if p.abs() <= noise {
+                s.done[i] = true;
+                continue;
+            }
+            // Aberth's correction w = N/(1 − N·Σ 1/(zᵢ − zⱼ)), N = p/p' (Bini 1996, eq. 6).
+            let newton = p.div(dp);
+            let mut sum = C::default();
+            for (j, &zj) in s.z.iter().enumerate() {
+                if j != i {
+                    sum = sum.add(zi.sub(zj).recip());
+                }
+            }
+            let w = newton.div(C::new(1.0, 0.0).sub(newton.mul(sum)));
+            if !w.is_finite() {
+                return false;
+            }
+            let next = zi.sub(w);
+            s.z[i] = next;
+            if w.abs() <= 2.0 * f64::EPSILON * next.abs() {
+                s.done[i] = true;
+            } else {
+                moving = true;
+            }
+        }
+        if !moving {
+            break;
+        }
+    }
+    for i in 0..n {
+        let z = s.z[i];
+        if z.im != 0.0 {
+            // Made real when the imaginary part is within the approximation's own Newton
+            // radius `n·max(|p|, noise)/|p'|`: a real root's approximation ends there; a
+            // non-real root so close to the axis is caught by the certificate (its disc and
+            // its conjugate's overlap, or the two real approximations coincide).
+            let (p, dp, noise) = horner_c(c, z);
+            let reach = n as f64 * p.abs().max(noise) / dp.abs();
+            if z.im.abs() <= reach {
+                s.z[i] = C::new(z.re, 0.0);
+            }
+        }
+    }
+    polish_real(c, s);
+    true
+}
+
+/// Aberth sweeps over the real approximations with compensated Horner values (as accurate
+/// as Horner in twice the working precision; `eval_bound.rs`), until each value is within
+/// its own error bound or its step vanishes: what the `f64` iteration cannot resolve
+/// (Wilkinson-20's middle roots, where `f64` values are noise within ±0.1 of the root).
+/// Aberth's sum, not Newton's step alone, keeps two approximations from settling on the
+/// same root; its real part is the sum over the conjugate-symmetrised set, so a real
+/// approximation stays real.
+fn polish_real(c: &[f64], s: &mut Scratch) {
+    let n = s.z.len();
+    for i in 0..n {
+        s.done[i] = s.z[i].im != 0.0;
+    }
+    for _ in 0..MAX_POLISH_STEPS {
+        let mut moving = false;
+        for i in 0..n {
+            if s.done[i] {
+                continue;
+            }
+            let x = s.z[i].re;
+            let (v, err) = comp_horner_bounded(c, x);
+            if v.abs() <= err {
+                s.done[i] = true;
+                continue;
+            }
+            let (_, d, _) = horner_derivative_and_bound(c, x, x);
+            let newton = v / d;
+            let mut sum = 0.0;
+            for (j, &zj) in s.z.iter().enumerate() {
+                if j != i {
+                    sum += C::new(x, 0.0).sub(zj).recip().re;
+                }
+            }
+            let next = x - newton / (1.0 - newton * sum);
+            if !next.is_finite() {
+                s.done[i] = true;
+                continue;
+            }
+            s.z[i] = C::new(next, 0.0);
+            if next == x {
+                s.done[i] = true;
+            } else {
+                moving = true;
+            }
+        }
+        if !moving {
+            break;
+        }
+    }
+}
+
+/// A positive normal number as `m·2^e`, `m ∈ [1, 2)` (exact), for products of many factors
+/// that would over- or underflow in `f64`.
+fn split(x: f64) -> (f64, i64) {
+    let bits = x.to_bits();
+    let e = ((bits >> 52) & 0x7ff) as i64 - 1023;
+    (f64::from_bits((bits & !(0x7ff << 52)) | (1023 << 52)), e)
+}
+
+/// `2^e` for `−1022 ≤ e ≤ 1023`.
+fn pow2(e: i64) -> f64 {
+    f64::from_bits(((e + 1023) as u64) << 52)
+}
+
+/// The computed `|a − b|²` of two centres, or `None` when it is below [`MIN_DISTANCE`] or
+/// not finite. The true value is at least this times `(1 + u)^-4`: each coordinate
+/// difference rounds once (`|d| ≥ |d̂|/(1 + u)`), the squares and their sum once each; an
+/// underflowing square errs by at most `η/2 ≤ 2^-174·MIN_DISTANCE` absolutely, within the
+/// margins taken by the callers.
+fn dist_sq(a: C, b: C) -> Option<f64> {
+    let d = a.sub(b);
+    let q = d.re * d.re + d.im * d.im;
+    (q >= MIN_DISTANCE && q.is_finite()).then_some(q)
+}
+
+/// Step 2: upper bounds `rᵢ ≥ n·|p(zᵢ)|/(|aₙ|·∏_{j≠i}|zᵢ − zⱼ|)`. `false` when the centres
+/// are not distinct enough or a radius overflows.
+///
+/// # Accuracy
+/// `|p(zᵢ)|` is bounded above by [`abs_p_upper`]; `∏|zᵢ − zⱼ|²` below by the computed product
+/// of [`dist_sq`] (each `(1 + u)^4` low at worst) with its `n − 2` roundings, kept in
+/// `m·2^e` form so that no step leaves the normal range (scaling by powers of two is exact);
+/// the quotient, the square root and the final product with `n` take four more roundings.
+/// Together `(1 + u)^{2.5n + 6} ≤ 1 + (5n + 12)u`, covered by the factor `1 + (4n + 16)ε`.
+fn certify(c: &[f64], s: &mut Scratch) -> bool {
+    let n = s.z.len();
+    let (an_m, an_e) = split(c[n].abs().max(f64::MIN_POSITIVE));
+    if c[n].abs() < f64::MIN_POSITIVE {
+        // A subnormal leading coefficient: relative bounds on it do not hold.
+        return false;
+    }
+    s.radius.clear();
+    let margin = 1.0 + (4 * n + 16) as f64 * f64::EPSILON;
+    for i in 0..n {
+        let zi = s.z[i];
+        let p_up = abs_p_upper(c, zi);
+        if !p_up.is_finite() {
+            return false;
+        }
+        let (p_m, p_e) = split(p_up.max(f64::MIN_POSITIVE));
+        let (mut prod, mut prod_e) = (1.0f64, 0i64);
+        for (j, &zj) in s.z.iter().enumerate() {
+            if j == i {
+                continue;
+            }
+            let Some(q) = dist_sq(zi, zj) else {
+                return false;
+            };
+            let (q_m, q_e) = split(q);
+            let (m, e) = split(prod * q_m);
+            prod = m;
+            prod_e += e + q_e;
+        }
+        if prod_e % 2 != 0 {
+            prod *= 2.0;
+            prod_e -= 1;
+        }
+        let mant = n as f64 * p_m / (an_m * prod.sqrt());
+        let e = p_e - an_e - prod_e / 2;
+        let r = if e > 900 {
+            return false;
+        } else if e < -1000 {
+            // mant < 2n·2 ≤ 2^12: r < 2^-988.
+            pow2(-980)
+        } else {
+            mant * pow2(e) * margin
+        };
+        s.radius.push(r);
+    }
+    true
+}
+
+/// Whether the closed discs `D(a, ra)` and `D(b, rb)` are certainly disjoint:
+/// `|a − b| > ra + rb` with the distance bounded below ([`dist_sq`], `(1 − 4ε)` covering its
+/// `(1 + u)^-4`) and the sum of radii above (two roundings of the sum and square, each
+/// covered by `(1 + 2ε)`).
+fn discs_apart(a: C, ra: f64, b: C, rb: f64) -> bool {
+    let d = a.sub(b);
+    let q = d.re * d.re + d.im * d.im;
+    // Too close to tell, or too far to compare in `f64` (an infinite `q` says nothing
+    // about `(ra + rb)²`, which may overflow too): not certainly apart.
+    if !(q >= MIN_DISTANCE && q.is_finite()) {
+        return false;
+    }
+    let t = (ra + rb) * (1.0 + 2.0 * f64::EPSILON);
+    q * (1.0 - 4.0 * f64::EPSILON) > t * t * (1.0 + 2.0 * f64::EPSILON)
+}
+
+/// Step 3: the real roots of `(lo, hi]` from the discs (module docs), as brackets in
+/// `s.brackets`, sorted. `false` when some root of the range is not accounted for.
+fn decide(c: &[f64], lo: f64, hi: f64, s: &mut Scratch) -> bool {
+    let n = s.z.len();
+    s.shadow.clear();
+    s.brackets.clear();
+    for i in 0..n {
+        let (z, r) = (s.z[i], s.radius[i]);
+        // The disc meets the axis only if |Im z| ≤ r (exact comparison of stored numbers);
+        // its real points lie in [Re z − r, Re z + r], rounded outward.
+        s.shadow.push(if z.im.abs() <= r {
+            ((z.re - r).next_down(), (z.re + r).next_up())
+        } else {
+            (f64::NAN, f64::NAN)
+        });
+    }
+    for i in 0..n {
+        let (a, b) = s.shadow[i];
+        // No real point of this disc in [lo, hi] (NaN: none at all).
+        if a.is_nan() || b < lo || a > hi {
+            continue;
+        }
+        let (z, r) = (s.z[i], s.radius[i]);
+        if z.im != 0.0 {
+            return false;
+        }
+        for j in 0..n {
+            if j == i {
+                continue;
+            }
+            let (sa, sb) = s.shadow[j];
+            let shadows_apart = sa.is_nan() || sb < a || sa > b;
+            if !(shadows_apart && discs_apart(z, r, s.z[j], s.radius[j])) {
+                return false;
+            }
+        }
+        // One simple real root in (a, b), and no other real root there: certified signs.
+        let s_a = certified_sign(c, a, 0.0);
+        let s_b = certified_sign(c, b, 0.0);
+        if s_a == 0 || s_b != -s_a {
+            return false;
+        }
+        let (l, s_l) = if a < lo {
+            (lo, certified_sign(c, lo, 0.0))
+        } else {
+            (a, s_a)
+        };
+        let (h, s_h) = if b > hi {
+            (hi, certified_sign(c, hi, 0.0))
+        } else {
+            (b, s_b)
+        };
+        if s_l == 0 || s_h == 0 {
+            return false;
+        }
+        if s_l == -s_h {
+            s.brackets.push(Bracket::new(l, h, s_l));
+        }
+        // Equal signs: the root is in (a, lo) or (hi, b), outside the range.
+    }
+    s.brackets.sort_unstable_by(|x, y| x.lo.total_cmp(&y.lo));
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    use super::*;
+    use crate::testutil::{chebyshev, planted, rat, wilkinson};
+    use crate::{IsolationMethod, Poly, Rat, RootOptions, RootStats};
+
+    /// Tolerance of the answers compared here (absolute, on roots of size ≤ 21).
+    const X_TOL: f64 = 1e-12;
+
+    /// The certified answer on `(lo, hi]` with its statistics, checked root for root against
+    /// the exact oracle (exact isolation and refinement of the same stored polynomial).
+    fn check(p: &Poly<f64>, lo: f64, hi: f64) -> RootStats {
+        let mut stats = RootStats::default();
+        let got = p
+            .real_roots_with(lo, hi, &RootOptions::new(X_TOL), &mut stats)
+            .expect("valid query");
+        let exact = RootOptions {
+            isolation: IsolationMethod::Exact,
+            ..RootOptions::new(X_TOL)
+        };
+        let want = p
+            .real_roots_with(lo, hi, &exact, &mut RootStats::default())
+            .expect("valid query");
+        assert_eq!(got.len(), want.len(), "got {got:?}, exact {want:?}");
+        for (g, w) in got.iter().zip(&want) {
+            // Within the tolerance or two f64 spacings (the promise for huge roots).
+            assert!(
+                (g - w).abs() <= (2.0 * X_TOL).max(4.0 * f64::EPSILON * w.abs()),
+                "got {g:e}, exact {w:e}: {got:?}"
+            );
+        }
+        let mut intervals = RootStats::default();
+        let ivs = p
+            .isolate_roots_with(lo, hi, &RootOptions::default(), &mut intervals)
+            .expect("valid query");
+        assert_eq!(ivs.len(), want.len(), "isolating intervals {ivs:?}");
+        for (iv, w) in ivs.iter().zip(&want) {
+            let slop = (2.0 * X_TOL).max(4.0 * f64::EPSILON * w.abs());
+            assert!(
+                iv.lo - slop <= *w && *w <= iv.hi + slop,
+                "{iv:?} misses the exact root {w:e}"
+            );
+        }
+        assert_eq!(
+            stats.inclusion_decided, intervals.inclusion_decided,
+            "both queries take the same path"
+        );
+        stats
+    }
+
+    /// Seeded Kac polynomial: independent standard normal coefficients (Box–Muller).
+    fn kac(degree: usize, seed: u64) -> Poly<f64> {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        Poly::new(
+            (0..=degree)
+                .map(|_| {
+                    let (u, v): (f64, f64) = (rng.gen_range(f64::EPSILON..1.0), rng.r#gen());
+                    (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+                })
+                .collect(),
+        )
+    }
+
+    #[test]
+    fn wilkinson_20_all_roots_by_the_discs() {
+        let p = wilkinson(20).to_f64();
+        let stats = check(&p, 0.0, 21.0);
+        assert_eq!(
+            (stats.inclusion_decided, stats.inclusion_undecided),
+            (1, 0),
+            "decided by the discs: {stats:?}"
+        );
+        assert_eq!(stats.subdivisions, 0, "no subdivision ran");
+    }
+
+    #[test]
+    fn kac_planted_and_chebyshev_degree_40_agree_with_the_oracle() {
+        for seed in 0..3 {
+            let p = kac(40, seed);
+            let stats = check(&p, -2.0, 2.0);
+            assert_eq!(stats.inclusion_decided, 1, "Kac seed {seed}: {stats:?}");
+        }
+        let mut rng = ChaCha8Rng::seed_from_u64(40);
+        let roots: Vec<Rat> = (0..40).map(|_| rat(rng.gen_range(-64..=64), 16)).collect();
+        // Repeated rationals are double roots: whichever path answers, the answer is exact.
+        check(&planted(&roots).to_f64(), -5.0, 5.0);
+        check(&chebyshev(40).to_f64(), -1.5, 1.5);
+    }
+
+    #[test]
+    fn query_ends_inside_a_disc_are_decided_by_signs() {
+        // Ends at, just below and just above the roots 3 and 7 of a degree-8 polynomial.
+        let p = Poly::from_roots(&[1.0, 2.0, 3.0, 4.5, 5.0, 6.0, 7.0, 8.0]);
+        for (lo, hi) in [
+            (3.0, 7.0),
+            (3f64.next_down(), 7f64.next_down()),
+            (3f64.next_up(), 7f64.next_up()),
+            (2.9999999, 7.0000001),
+        ] {
+            check(&p, lo, hi);
+        }
+    }
+
+    #[test]
+    fn clusters_and_double_roots_fall_through_and_are_still_right() {
+        let close = Poly::from_roots(&[0.5, 0.5 + 4.0 * f64::EPSILON, 2.0, -1.0, 3.0]);
+        let double = Poly::from_roots(&[0.25, 0.25, 2.0, -1.0, 3.0]);
+        for p in [close, double] {
+            let stats = check(&p, -10.0, 10.0);
+            assert_eq!(
+                (stats.inclusion_decided, stats.inclusion_undecided),
+                (0, 1),
+                "undecided, answered by subdivision: {stats:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn conjugate_pair_near_the_axis_is_not_taken_for_real_roots() {
+        // (x² − x + 0.25 + δ²)(x − 2)(x + 1)(x − 3): roots 0.5 ± δi, −1, 2, 3. Its stored
+        // coefficients round, so the oracle of the stored polynomial is the judge.
+        for delta in [1e-3, 1e-6, 1e-9] {
+            let pair = Poly::new(vec![0.25 + delta * delta, -1.0, 1.0]);
+            let p = &pair * &Poly::from_roots(&[2.0, -1.0, 3.0]);
+            let stats = check(&p, -10.0, 10.0);
+            assert_eq!(stats.queries, 1, "one query");
+        }
+        // δ = 1e-3 is far enough from the axis for the discs to decide, and the pair is not
+        // counted: three real roots.
+        let pair = Poly::new(vec![0.25 + 1e-6, -1.0, 1.0]);
+        let p = &pair * &Poly::from_roots(&[2.0, -1.0, 3.0]);
+        let mut stats = RootStats::default();
+        let roots = p
+            .real_roots_with(-10.0, 10.0, &RootOptions::new(X_TOL), &mut stats)
+            .expect("valid query");
+        assert_eq!(roots.len(), 3, "{roots:?}");
+        assert_eq!(stats.inclusion_decided, 1, "{stats:?}");
+    }
+
+    #[test]
+    fn coefficients_spanning_1e300_neither_panic_nor_mislead() {
+        let cases = [
+            vec![1e-300, 1.0, 1e300, -1.0],
+            vec![1e300, -3e300, 1e-300, 0.5, 1e-300],
+            vec![-1e300, 1e-300, 1e-300, 1e-300, 1.0],
+            vec![f64::MIN_POSITIVE, 1.0, -2.0, 1.0e-310],
+        ];
+        for c in cases {
+            let p = Poly::new(c);
+            let b = p.root_bound().unwrap_or(1e300).min(1e300);
+            check(&p, -b, b);
+        }
+        assert!(
+            !real_brackets(&[1.0, 2.0, 0.0], -1.0, 1.0, |_| {}),
+            "a zero leading coefficient is refused"
+        );
+        assert!(
+            !real_brackets(&[1.0, f64::NAN, 1.0], -1.0, 1.0, |_| {}),
+            "NaN is refused"
+        );
+    }
+}
