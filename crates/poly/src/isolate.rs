@@ -1488,6 +1488,18 @@ mod tests {
         }
     }
 
+    /// `(1 + s/2)³²` expanded: a shadow ray leaving the plane `x = 1` of `x³² − 1` along
+    /// `x(s) = 1 + s/2`, before `−1` and the offset `δ` go into `c₀`.
+    fn plane_power_32() -> Vec<f64> {
+        let mut c = vec![0.0; 33];
+        let mut binom = 1.0;
+        for (k, ck) in c.iter_mut().enumerate() {
+            *ck = binom * 0.5f64.powi(k as i32);
+            binom = binom * (32 - k) as f64 / (k + 1) as f64;
+        }
+        c
+    }
+
     #[test]
     fn shadow_ray_off_a_high_degree_plane_is_decided_by_the_coefficient_signs() {
         // Issue 11 (x^32 − 1 took 25× Barth's time, most of it in shadow rays): a shadow ray
@@ -1495,12 +1507,7 @@ mod tests {
         // (1 + s/2)^32 − 1 + δ on (0, 20]: every coefficient positive, no root. The
         // Bernstein run bounds its rounding by the whole range's magnitude and subdivided
         // before seeing that; Descartes' rule on the stored signs sees it at once.
-        let mut c = vec![0.0; 33];
-        let mut binom = 1.0;
-        for (k, ck) in c.iter_mut().enumerate() {
-            *ck = binom * 0.5f64.powi(k as i32);
-            binom = binom * (32 - k) as f64 / (k + 1) as f64;
-        }
+        let mut c = plane_power_32();
         c[0] = 1e-9; // 1 − 1 + δ
         let p = Poly::new(c.clone());
         let mut stats = RootStats::default();
@@ -1549,12 +1556,7 @@ mod tests {
         // on the stored signs says nothing and the Bernstein runs over (lo, 20] subdivided.
         // With the sign of p(lo) in place of c₀ and a radius of its own for each coefficient's
         // slack, no search is needed.
-        let mut c = vec![0.0; 33];
-        let mut binom = 1.0;
-        for (k, ck) in c.iter_mut().enumerate() {
-            *ck = binom * 0.5f64.powi(k as i32);
-            binom = binom * (32 - k) as f64 / (k + 1) as f64;
-        }
+        let mut c = plane_power_32();
         c[0] = -1e-15; // δ, within the slack of 0
         let slack = |r: f64| 1e-13 * (1.0 + 0.5 * r).powi(32);
         let p = Poly::new(c.clone());

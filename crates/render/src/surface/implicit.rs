@@ -153,6 +153,10 @@ pub struct Implicit<F> {
     ray_degree: [u32; 8],
     /// The relative factor of the double-double tier's slack ([`dd_slack_rel`]).
     dd_rel: f64,
+    /// The double-double tier's underflow weight: four times
+    /// [`Poly3::restriction_underflow_weight`] (a double-double operation has up to four
+    /// underflowing roundings).
+    dd_underflow_weight: f64,
 }
 
 impl<F: ImplicitFn> Implicit<F> {
@@ -171,6 +175,7 @@ impl<F: ImplicitFn> Implicit<F> {
             slack_rel: slack_rel(rounding_steps, degree),
             underflow_weight: f.restriction_underflow_weight(),
             dd_rel: dd_slack_rel(f.poly().restriction_rounding_steps(), degree),
+            dd_underflow_weight: 4.0 * f.poly().restriction_underflow_weight(),
             ray_degree: std::array::from_fn(|bits| {
                 f.poly()
                     .restriction_degree_bound([bits & 1 != 0, bits & 2 != 0, bits & 4 != 0])
@@ -386,9 +391,9 @@ fn dd_slack_rel(steps: u32, degree: u32) -> f64 {
 /// degree-12 surface subnormal or zero); the absolute term `C·(1 + R + Y_max)^N`
 /// ([`ImplicitFn::restriction_underflow_weight`]) covers them, far below the relative part
 /// unless the polynomial's own values are near the underflow threshold.
-fn restriction_slack<F: ImplicitFn>(f: &F, s: &RestrictionSlack, r: f64) -> f64 {
+fn restriction_slack(g: impl Fn(DVec3) -> f64, s: &RestrictionSlack, r: f64) -> f64 {
     let y = (s.o_abs + s.d_abs * r) * (1.0 + 2.0 * f64::EPSILON);
-    (s.rel * f.restriction_abs(y) + s.underflow(r, y)) * (1.0 + 4.0 * f64::EPSILON)
+    (s.rel * g(y) + s.underflow(r, y)) * (1.0 + 4.0 * f64::EPSILON)
 }
 
 impl RestrictionSlack {
@@ -619,7 +624,7 @@ impl<F: ImplicitFn> Implicit<F> {
             o_abs: o.abs() * (1.0 + f64::EPSILON),
             d_abs: ray.dir.abs(),
         };
-        let slack = |r: f64| restriction_slack(&self.f, &data, r);
+        let slack = |r: f64| restriction_slack(|y| self.f.restriction_abs(y), &data, r);
         let (mut lo, mut hi) = (lo, hi);
         let mut answer = Err(RootError::SlackLimited { lo, hi });
         if !(lo.is_finite() && hi.is_finite()) {
@@ -701,16 +706,13 @@ impl<F: ImplicitFn> Implicit<F> {
         // |o| ≤ |hi|(1 + 2⁻⁵³), and the point's own error is in `dd_rel`.
         let data = RestrictionSlack {
             rel: self.dd_rel,
-            underflow_weight: 4.0 * self.f.poly().restriction_underflow_weight(),
+            underflow_weight: self.dd_underflow_weight,
             degree: self.degree,
             o_abs: DVec3::from_array(o.map(|x| x.to_f64().abs())) * (1.0 + 2.0 * f64::EPSILON),
             d_abs: ray.dir.abs(),
         };
         let poly3 = self.f.poly();
-        let extra = |r: f64| {
-            let y = (data.o_abs + data.d_abs * r) * (1.0 + 2.0 * f64::EPSILON);
-            (data.rel * poly3.eval_abs_upper(y) + data.underflow(r, y)) * (1.0 + 4.0 * f64::EPSILON)
-        };
+        let extra = |r: f64| restriction_slack(|y| poly3.eval_abs_upper(y), &data, r);
         let answer = self.rounded_tier(ws, &extra, range, opts, centred);
         if answer.is_some() {
             ws.stats.surface_certification.dd_decided += 1;
@@ -998,7 +1000,7 @@ mod tests {
                     poly::rat_to_f64(&((c - rat(stored)) * weight)).abs()
                 })
                 .sum();
-            let slack = restriction_slack(&surface.f, &data, r);
+            let slack = restriction_slack(|y| surface.f.restriction_abs(y), &data, r);
             assert!(err <= slack, "R = {r:e}: error {err:e} > slack {slack:e}");
             assert!(
                 r < 1e10 || err > 0.0,
