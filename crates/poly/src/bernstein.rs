@@ -259,12 +259,7 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
             0.0
         };
         let underflow_unit = ETA * (amp + chain) * ((n + 1) * (n + 1)) as f64;
-        // M = q̃(1) = Σ|c_k|(|a| + |w|)^k bounds every absolute-value weight (module docs).
-        // Horner on non-negative numbers is increasing in x, so x is rounded up first; the
-        // computed sum is inflated for its 2n + 2 roundings.
-        let x = (aa + aw) * (1.0 + 2.0 * f64::EPSILON);
-        let sum = p.iter().rev().fold(0.0, |s, c| s * x + c.abs());
-        let mag = sum * (1.0 + 2.0 * gamma_ratio_upper(2 * n + 2));
+        let mag = magnitude(p, aa + aw);
         if !mag.is_finite() {
             return None;
         }
@@ -617,6 +612,23 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
             mag: self.mag,
         }
     }
+}
+
+/// The magnitude bound `M` of a run on `(t_min, t_max]` (see the module docs), without the
+/// run: a search decides from it whether a fresh run on a piece can be any tighter than its
+/// parent's.
+pub(crate) fn run_magnitude(p: &[f64], t_min: f64, t_max: f64) -> f64 {
+    let (w, _) = diff_rounded_up(t_max, t_min);
+    magnitude(p, t_min.abs() + w.abs())
+}
+
+/// `M = q̃(1) = Σ|c_k|·rᵏ` with `r = |a| + |w|`, rounded up: it bounds every absolute-value
+/// weight of a run (module docs). Horner on non-negative numbers is increasing in `r`, so `r`
+/// is rounded up first; the computed sum is inflated for its `2n + 2` roundings.
+fn magnitude(p: &[f64], r: f64) -> f64 {
+    let x = r * (1.0 + 2.0 * f64::EPSILON);
+    let sum = p.iter().rev().fold(0.0, |s, c| s * x + c.abs());
+    sum * (1.0 + 2.0 * gamma_ratio_upper(2 * p.len()))
 }
 
 /// [`BernsteinIsolator::run`] on `(t_min, t_max]` with coefficient storage sized to the

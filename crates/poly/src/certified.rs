@@ -10,10 +10,12 @@
 //! `M = Σ|cᵢ|(|t_a| + |t_b − t_a|)ⁱ`, which is far smaller than the parent's when the piece
 //! lies near 0 and the roots there are tiny (eliminants whose roots cluster near `u = 0`); and
 //! its subdivision points are no longer the parent's dyadic points, so a root sitting exactly
-//! on one of those (odd Chebyshev polynomials at 0) is now inside a node. When a run whose `M`
-//! is not [`MIN_MAG_GAIN`] of its parent's is stuck, or after [`MAX_RUNS`] runs, the stuck
-//! piece (after the budget: everything left) goes to adaptive precision ([`PieceIsolator`]:
-//! double-double, then wider binary floats, rigorous bounds throughout). Only its nodes that
+//! on one of those (odd Chebyshev polynomials at 0) is now inside a node. When a fresh run's
+//! `M` would not be [`MIN_MAG_GAIN`] of the stuck run's, or after [`MAX_RUNS`] runs, the stuck
+//! piece (after the budget: everything left) goes to adaptive precision: first re-expanded at
+//! its end in double-double and searched in `f64` with the re-expansion's radii as a value
+//! slack ([`Shift`]); if that leaves anything undecided, [`PieceIsolator`] (double-double
+//! de Casteljau, then wider binary floats, rigorous bounds throughout). Only its nodes that
 //! even [`MAX_BITS`](crate::multiprec::MAX_BITS) cannot decide (multiple roots, roots within
 //! one `f64` spacing) are isolated by exact Sturm counts on the stored polynomial (the
 //! sequence is built once per query, counted in [`RootStats::exact_fallbacks`]). See
@@ -29,6 +31,7 @@ use crate::exact_oracle::ExactOracle;
 use crate::multiprec::{Outcome, PieceIsolator, Tier, point_sign};
 use crate::query::Slack;
 use crate::root_interval::RootInterval;
+use crate::shifted::Shift;
 use crate::stats::RootStats;
 use crate::univariate::Poly;
 
@@ -42,10 +45,10 @@ const MAX_RUNS: u32 = 16;
 /// twenty (`paper-notes/implicit-surfaces.md` §6).
 const MAX_SLACK_RUNS: u32 = 48;
 
-/// A run on a piece where its parent was stuck may itself go on with further runs only if
-/// its magnitude bound `M` is at most this fraction of the parent's; otherwise its error
-/// bounds are no tighter, more runs would be stuck the same way, and its stuck piece is
-/// isolated exactly.
+/// A piece where a run was stuck gets a fresh `f64` run only if that run's magnitude bound
+/// `M` ([`bernstein::run_magnitude`]) is at most this fraction of the stuck run's; otherwise
+/// its error bounds are no tighter, it would be stuck the same way, and the piece goes to
+/// adaptive precision at once.
 const MIN_MAG_GAIN: f64 = 0.25;
 
 /// Non-dyadic fractions of an interval at which it is split when a run is stuck on all of it
@@ -66,11 +69,16 @@ pub(crate) enum Found {
     /// An interval from exact isolation: refined in `f64` when its end signs are certified
     /// opposite, else with the exact sequence.
     Exact(RootInterval<f64>),
+    /// A bracket in the variable `u = t − e` of a piece re-expanded at `e`
+    /// ([`CertifiedSearch::shifts`] at this index), certified against the shift's slack
+    /// (refined in `f64` on the shifted coefficients).
+    Shifted(usize, Bracket),
 }
 
 /// The certified search of one query (see the module docs).
 pub(crate) struct CertifiedSearch<'p> {
-    p: &'p Poly<f64>,
+    /// The stored polynomial's coefficients (lowest first).
+    c: &'p [f64],
     first_only: bool,
     runs_left: u32,
     /// Some piece of this query went to adaptive precision: the rest of the query goes there
@@ -93,13 +101,15 @@ pub(crate) struct CertifiedSearch<'p> {
     pub(crate) slack_limited: Option<(f64, f64)>,
     /// The roots found, sorted.
     pub(crate) found: SmallVec<[Found; 2]>,
+    /// The re-expanded pieces that [`Found::Shifted`] brackets refer to.
+    pub(crate) shifts: Vec<Shift>,
 }
 
 impl<'p> CertifiedSearch<'p> {
     /// Isolates the roots of `p` in `(lo, hi]` (both finite, `lo < hi`), or only the first
     /// one with `first_only`.
     pub(crate) fn run(
-        p: &'p Poly<f64>,
+        c: &'p [f64],
         lo: f64,
         hi: f64,
         first_only: bool,
@@ -107,14 +117,14 @@ impl<'p> CertifiedSearch<'p> {
         stats: &mut RootStats,
     ) -> Self {
         let range_slack = slack.at(lo.abs().max(hi.abs()));
-        let signs = end_signs(p.coeffs(), lo, hi, slack, range_slack);
-        Self::run_with_signs(p, (lo, hi), signs, first_only, (slack, range_slack), stats)
+        let signs = end_signs(c, lo, hi, slack, range_slack);
+        Self::run_with_signs(c, (lo, hi), signs, first_only, (slack, range_slack), stats)
     }
 
     /// As [`run`](Self::run), with the caller's [`certified_sign`]s of `p(lo)`, `p(hi)` (0
     /// where not certain).
     pub(crate) fn run_with_signs(
-        p: &'p Poly<f64>,
+        c: &'p [f64],
         (lo, hi): (f64, f64),
         signs: (i8, i8),
         first_only: bool,
@@ -122,7 +132,7 @@ impl<'p> CertifiedSearch<'p> {
         stats: &mut RootStats,
     ) -> Self {
         let mut search = CertifiedSearch {
-            p,
+            c,
             first_only,
             runs_left: if slack.is_some() {
                 MAX_SLACK_RUNS
@@ -136,6 +146,7 @@ impl<'p> CertifiedSearch<'p> {
             top_slack: (lo.abs().max(hi.abs()), range_slack),
             slack_limited: None,
             found: SmallVec::new(),
+            shifts: Vec::new(),
         };
         search.start(lo, hi, signs, stats);
         search
@@ -164,7 +175,7 @@ impl<'p> CertifiedSearch<'p> {
             self.slack_limited = Some((lo, hi));
             return;
         }
-        let c = self.p.coeffs();
+        let c = self.c;
         let s_lo = if s_lo == 0 {
             point_sign(c, lo, Tier::Dd).0
         } else {
@@ -215,13 +226,13 @@ impl<'p> CertifiedSearch<'p> {
         if lo >= hi {
             return false;
         }
-        if self.runs_left == 0 || self.went_adaptive {
+        if self.goes_adaptive(lo, hi, parent_mag) {
             return self.adaptive(lo, hi, s, stats);
         }
         self.runs_left -= 1;
         let mut out = Brackets::new();
         let result = bernstein::run(
-            self.p.coeffs(),
+            self.c,
             (lo, hi),
             s,
             self.slack_at(lo.abs().max(hi.abs())),
@@ -246,32 +257,42 @@ impl<'p> CertifiedSearch<'p> {
             s_b,
             mag,
         } = stuck;
-        // A run no tighter than its parent cannot do better than the parent did, so its
-        // stuck piece goes to adaptive precision rather than to yet another `f64` run.
-        // With a value slack a narrower piece always gains: the slack is taken at the piece's
-        // own radius, and it is what usually leaves a sign undecided (the runs left bound it).
-        let no_gain = !self.slack.is_some() && mag > MIN_MAG_GAIN * parent_mag;
+        // A fresh run on a piece no tighter than this one goes to adaptive precision instead
+        // (the check on entry to `range`); with a value slack a narrower piece always gains:
+        // the slack is taken at the piece's own radius, and it is what usually leaves a sign
+        // undecided (the runs left bound it).
         if t_a == lo && t_b == hi {
             // Stuck on the whole interval: split it at a non-dyadic point and try fresh runs
             // on the parts.
-            if no_gain {
-                return self.adaptive(lo, hi, s, stats);
-            }
             let slack = self.slack_at(lo.abs().max(hi.abs()));
-            let Some((m, s_m)) = split_point(self.p.coeffs(), lo, hi, slack) else {
+            let Some((m, s_m)) = split_point(self.c, lo, hi, slack) else {
                 return self.adaptive(lo, hi, s, stats);
             };
             return self.range(lo, m, (s.0, s_m), mag, stats)
                 || self.range(m, hi, (s_m, s.1), mag, stats);
         }
         // (lo, t_a] is answered; (t_a, t_b] holds the stuck node; (t_b, hi] is untouched and
-        // gets a run of its own.
-        let done = if no_gain {
-            self.adaptive(t_a, t_b, (s_a, s_b), stats)
-        } else {
-            self.range(t_a, t_b, (s_a, s_b), mag, stats)
-        };
+        // gets a run of its own — unless the stuck piece goes to adaptive precision: then so
+        // does everything after it, and one piece (t_a, hi] costs one re-expansion, not two.
+        if self.goes_adaptive(t_a, t_b, mag) {
+            return self.adaptive(t_a, hi, (s_a, s.1), stats);
+        }
+        let done = self.range(t_a, t_b, (s_a, s_b), mag, stats);
         done || (t_b < hi && self.range(t_b, hi, (s_b, s.1), f64::INFINITY, stats))
+    }
+
+    /// True when the piece `(lo, hi]` goes to adaptive precision rather than to a fresh
+    /// `f64` run: the run budget is spent, some piece went there already, or (without a
+    /// slack) the fresh run would be no tighter than the stuck parent, whose bound `M` was
+    /// `parent_mag` — its error bound would start from about the same `M` (a piece far from
+    /// 0 against its width, as the roots of a ray polynomial restricted far from its
+    /// surface), so it would be stuck the same way.
+    fn goes_adaptive(&self, lo: f64, hi: f64, parent_mag: f64) -> bool {
+        self.runs_left == 0
+            || self.went_adaptive
+            || (!self.slack.is_some()
+                && parent_mag.is_finite()
+                && bernstein::run_magnitude(self.c, lo, hi) > MIN_MAG_GAIN * parent_mag)
     }
 
     /// Adaptive-precision isolation of `(lo, hi]` (finite ends, certified non-zero signs `s`):
@@ -284,7 +305,10 @@ impl<'p> CertifiedSearch<'p> {
             return true;
         }
         self.went_adaptive = true;
-        let mut piece = PieceIsolator::new(self.p.coeffs(), (lo, hi), s, stats);
+        if let Some(done) = self.shifted(lo, hi, s, stats) {
+            return done;
+        }
+        let mut piece = PieceIsolator::new(self.c, (lo, hi), s, stats);
         while let Some(outcome) = piece.next(stats) {
             let done = match outcome {
                 Outcome::Bracket(b) => {
@@ -300,6 +324,40 @@ impl<'p> CertifiedSearch<'p> {
         false
     }
 
+    /// The piece `(lo, hi]` (certified non-zero end signs `s`) re-expanded at its end nearer
+    /// 0 in double-double ([`Shift`]) and searched in `f64` with the shift's radii as value
+    /// slack: the first tier of [`adaptive`](Self::adaptive). `None` when the shift does not
+    /// apply or its search left something undecided (then nothing of it is kept, and the
+    /// piece goes on to [`PieceIsolator`]); else true when the search is over.
+    fn shifted(&mut self, lo: f64, hi: f64, s: (i8, i8), stats: &mut RootStats) -> Option<bool> {
+        let shift = Shift::new(self.c, (lo, hi))?;
+        let (u_lo, u_hi) = shift.range;
+        let slack_fn = |r: f64| shift.slack(r);
+        let slack = Slack::new(&slack_fn);
+        let range_slack = slack.at(u_lo.abs().max(u_hi.abs()));
+        let sub = CertifiedSearch::run_with_signs(
+            &shift.q,
+            (u_lo, u_hi),
+            s,
+            self.first_only,
+            (slack, range_slack),
+            stats,
+        );
+        if sub.slack_limited.is_some() {
+            return None;
+        }
+        let index = self.shifts.len();
+        let any = !sub.found.is_empty();
+        self.found.extend(sub.found.into_iter().map(|f| match f {
+            Found::Bracket(b) => Found::Shifted(index, b),
+            _ => unreachable!("a search with a slack finds only brackets"),
+        }));
+        stats.adaptive_pieces += 1;
+        stats.shifted_pieces += 1;
+        self.shifts.push(shift);
+        Some(self.first_only && any)
+    }
+
     /// Exact isolation of `(lo, hi]` (finite `f64` ends, [`ExactOracle`]); true when the
     /// search is over. With a slack, the search stops here instead ([`Self::slack_limited`]).
     fn exact(&mut self, lo: f64, hi: f64, stats: &mut RootStats) -> bool {
@@ -307,9 +365,10 @@ impl<'p> CertifiedSearch<'p> {
             self.slack_limited = Some((lo, hi));
             return true;
         }
-        let p = self.p;
+        let c = self.c;
         let oracle = self.exact.get_or_insert_with(|| {
             stats.exact_fallbacks += 1;
+            let p = Poly::new(c.to_vec());
             ExactOracle::new(&p.to_rat().expect("finite coefficients were checked"))
         });
         let ivs = oracle.isolate(lo, hi, self.first_only, stats);
@@ -379,7 +438,7 @@ impl Poly<f64> {
     /// `stats`: for tests of its tiers, since the all-roots queries try inclusion discs
     /// first (`inclusion.rs`) and these decide many polynomials without any tier.
     pub(crate) fn subdivision_root_count(&self, lo: f64, hi: f64, stats: &mut RootStats) -> usize {
-        CertifiedSearch::run(self, lo, hi, false, Slack::NONE, stats)
+        CertifiedSearch::run(self.coeffs(), lo, hi, false, Slack::NONE, stats)
             .found
             .len()
     }
@@ -389,27 +448,13 @@ impl Poly<f64> {
 mod tests {
     use super::*;
     use crate::root_options::RootOptions;
-    use crate::scalar::{rat_from_f64, rat_to_f64};
-    use crate::testutil::{chebyshev, planted_f64};
-
-    /// The distinct roots of the stored polynomial in `(lo, hi]` by exact Sturm isolation,
-    /// refined to 2^-80.
-    fn exact_roots(p: &Poly<f64>, lo: f64, hi: f64) -> Vec<f64> {
-        let q = p.to_rat().unwrap();
-        let seq = q.sturm().unwrap();
-        let (a, b) = (rat_from_f64(lo).unwrap(), rat_from_f64(hi).unwrap());
-        q.isolate_roots(&a, &b)
-            .unwrap()
-            .iter()
-            .map(|iv| rat_to_f64(&seq.refine_interval(iv, 80).lo))
-            .collect()
-    }
+    use crate::testutil::{chebyshev, planted_f64, stored_roots};
 
     fn assert_matches_exact(p: &Poly<f64>, lo: f64, hi: f64, stats: &mut RootStats) {
         let x_tol = 1e-12;
         let opts = RootOptions::new(x_tol);
         let got = p.real_roots_with(lo, hi, &opts, stats).unwrap();
-        let want = exact_roots(p, lo, hi);
+        let want = stored_roots(p, lo, hi);
         assert_eq!(got.len(), want.len(), "{p:?}: {got:?} vs {want:?}");
         for (g, w) in got.iter().zip(&want) {
             assert!((g - w).abs() <= x_tol + 1e-20, "{p:?}: {g} vs {w}");
@@ -472,7 +517,7 @@ mod tests {
             stats.adaptive_pieces >= 2,
             "real_roots and smallest_root each took the adaptive path: {stats:?}"
         );
-        let search = CertifiedSearch::run(&p, 0.0, 1.0, false, Slack::NONE, &mut stats);
+        let search = CertifiedSearch::run(p.coeffs(), 0.0, 1.0, false, Slack::NONE, &mut stats);
         assert!(search.exact_sequence().is_none(), "no exact sequence built");
     }
 }

@@ -23,7 +23,9 @@
 use smallvec::SmallVec;
 
 use crate::bernstein::Bracket;
-use crate::double_double::{DD_MIN_EXACT, DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, two_sum};
+use crate::double_double::{
+    DD_MIN_EXACT, DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, taylor_shift_into, two_sum,
+};
 use crate::eval_bound::{abs_weights, chain_underflow_weight};
 use crate::stats::RootStats;
 
@@ -123,19 +125,7 @@ impl<'c> DdBernstein<'c> {
         let v = &mut arena[..];
         // Step 1: r(s) = p(e + s), Horner's rule on polynomials (one product and one sum per
         // step on any path).
-        v[0] = Dd::from_f64(c[n]);
-        if e == 0.0 {
-            for (vj, &cj) in v.iter_mut().zip(c) {
-                *vj = Dd::from_f64(cj);
-            }
-        } else {
-            for k in (0..n).rev() {
-                for i in (1..=n - k).rev() {
-                    v[i] = v[i].mul_f(e).add(v[i - 1]);
-                }
-                v[0] = v[0].mul_f(e).add_f(c[k]);
-            }
-        }
+        taylor_shift_into(c, e, v);
         // Step 2: q_j = r_j·wʲ (wʲ by j − 1 products, then one more).
         let mut wj = w;
         for vj in v.iter_mut().skip(1) {

@@ -34,6 +34,29 @@ pub(crate) fn gamma_u(k: usize, u: f64) -> f64 {
     }
 }
 
+/// `v[j]` ← the coefficients of `p(e + u)` for the stored `c` (lowest first; `v.len() =
+/// c.len()`), by Horner's rule on polynomials in double-double: `2n` operations on any path
+/// from an input to an output, so each is within `γ_dd(2n)·Aⱼ` of the exact value, `Aⱼ` the
+/// same shift of `|c|` by `|e|` (every operation within [`DD_UNIT`] relatively; underflow
+/// aside). Shared by `dd_bernstein.rs` and `shifted.rs`.
+pub(crate) fn taylor_shift_into(c: &[f64], e: f64, v: &mut [Dd]) {
+    let n = c.len() - 1;
+    debug_assert_eq!(v.len(), n + 1, "one output per coefficient");
+    if e == 0.0 {
+        for (vj, &cj) in v.iter_mut().zip(c) {
+            *vj = Dd::from_f64(cj);
+        }
+        return;
+    }
+    v[0] = Dd::from_f64(c[n]);
+    for k in (0..n).rev() {
+        for i in (1..=n - k).rev() {
+            v[i] = v[i].mul_f(e).add(v[i - 1]);
+        }
+        v[0] = v[0].mul_f(e).add_f(c[k]);
+    }
+}
+
 /// A double-double number `hi + lo`, `|lo| ≤ ulp(hi)/2` (about 106 bits). Each of `+` and
 /// `·` between two of them or with an `f64` is within [`DD_UNIT`] of the exact result,
 /// relatively, when nothing underflows or overflows.

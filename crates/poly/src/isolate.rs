@@ -455,9 +455,10 @@ impl Poly<f64> {
         }
         match self.isolate_inner(a, b, opts, Slack::NONE, stats)? {
             Isolation::Certified(search) => {
-                out.extend(search.found.into_iter().map(|f| match f {
+                out.extend(search.found.iter().map(|f| match f {
                     Found::Bracket(b) => RootInterval { lo: b.lo, hi: b.hi },
-                    Found::Exact(iv) => iv,
+                    Found::Exact(iv) => iv.clone(),
+                    Found::Shifted(i, b) => search.shifts[*i].interval(b),
                 }));
             }
             Isolation::Exact(_, ivs) | Isolation::Heuristic(ivs) => out.extend(ivs),
@@ -631,7 +632,14 @@ impl Poly<f64> {
         Ok(match opts.isolation {
             IsolationMethod::Bernstein => {
                 if lo.is_finite() && hi.is_finite() {
-                    Isolation::Certified(CertifiedSearch::run(self, lo, hi, false, slack, stats))
+                    Isolation::Certified(CertifiedSearch::run(
+                        self.coeffs(),
+                        lo,
+                        hi,
+                        false,
+                        slack,
+                        stats,
+                    ))
                 } else {
                     stats.exact_fallbacks += 1;
                     exact_isolation(self, lo, hi, false, stats)
@@ -703,6 +711,10 @@ fn inclusion_first<V>(
 }
 
 /// The isolation result, before conversion or refinement.
+#[allow(
+    clippy::large_enum_variant,
+    reason = "a short-lived return value; boxing the search would allocate on every query"
+)]
 enum Isolation<'p> {
     /// The default certified search: `f64` brackets, and exact intervals where it needed them.
     Certified(CertifiedSearch<'p>),
@@ -874,7 +886,7 @@ fn certified_smallest(
         return Ok(Some(lo + 0.5 * (hi - lo)));
     }
     let search =
-        CertifiedSearch::run_with_signs(p, (lo, hi), signs, true, (slack, range_slack), stats);
+        CertifiedSearch::run_with_signs(c, (lo, hi), signs, true, (slack, range_slack), stats);
     match (search.found.first(), search.slack_limited) {
         (Some(first), _) => refine_found(p, &search, first, opts, slack, stats).map(Some),
         (None, Some((lo, hi))) => Err(RootError::SlackLimited { lo, hi }),
@@ -919,6 +931,10 @@ fn refine_found(
         return refine_pointwise(p.coeffs(), b, opts.tolerance(), slack);
     }
     let bracket = match found {
+        Found::Shifted(i, b) => {
+            let shift = &search.shifts[*i];
+            return Ok(shift.refine(p.coeffs(), b, opts.tolerance(), opts.refine, stats));
+        }
         Found::Bracket(b) => Some(*b),
         Found::Exact(iv) if !iv.is_point() => {
             let c = p.coeffs();
@@ -930,7 +946,9 @@ fn refine_found(
     };
     Ok(match (bracket, found, search.exact_sequence()) {
         (Some(b), _, _) => refine_certified(p, b, opts.tolerance(), opts.refine, stats),
-        (None, Found::Bracket(_), _) => unreachable!("brackets are refined in f64"),
+        (None, Found::Bracket(_) | Found::Shifted(..), _) => {
+            unreachable!("brackets are refined in f64")
+        }
         (None, Found::Exact(iv), Some(seq)) => refine_exact_interval(seq, iv, opts.tolerance()),
         (None, Found::Exact(iv), None) => unreachable!("exact interval {iv:?} without a sequence"),
     })

@@ -77,6 +77,7 @@ mod root_error;
 mod root_interval;
 mod root_options;
 mod scalar;
+mod shifted;
 mod stam;
 mod stats;
 mod sturm;

@@ -195,6 +195,11 @@ impl<'a> Slack<'a> {
     /// No slack: the stored polynomial is the true one.
     pub(crate) const NONE: Slack<'static> = Slack(None);
 
+    /// The slack `f(r)` on `[−r, r]`.
+    pub(crate) fn new(f: &'a dyn Fn(f64) -> f64) -> Self {
+        Slack(Some(f))
+    }
+
     /// True when a slack function was given.
     #[inline]
     pub(crate) fn is_some(&self) -> bool {

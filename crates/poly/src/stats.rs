@@ -53,6 +53,10 @@ pub struct RootStats {
     /// "Adaptive precision"). Only what that still cannot decide reaches
     /// [`exact_fallbacks`](Self::exact_fallbacks).
     pub adaptive_pieces: u64,
+    /// Of the [`adaptive_pieces`](Self::adaptive_pieces), those decided in `f64` after a
+    /// double-double re-expansion at the piece's end (`paper-notes/isolation.md`, "Shifted
+    /// `f64` tier"), with no double-double subdivision.
+    pub shifted_pieces: u64,
     /// Of the [`adaptive_pieces`](Self::adaptive_pieces), those that needed more than
     /// double-double precision somewhere.
     pub multiprecision_pieces: u64,
@@ -90,6 +94,7 @@ impl RootStats {
         self.exact_fallbacks += other.exact_fallbacks;
         self.refine_fallbacks += other.refine_fallbacks;
         self.adaptive_pieces += other.adaptive_pieces;
+        self.shifted_pieces += other.shifted_pieces;
         self.multiprecision_pieces += other.multiprecision_pieces;
         self.adaptive_refines += other.adaptive_refines;
         self.slack_limited += other.slack_limited;
@@ -160,6 +165,7 @@ mod tests {
         a.exact_fallbacks = 1;
         a.inclusion_decided = 5;
         a.inclusion_undecided = 6;
+        a.shifted_pieces = 2;
         let mut b = a.clone();
         b.subdivisions = 7;
         b.refine_evals = 3;
@@ -185,6 +191,7 @@ mod tests {
             (2, 1, 4),
             "adaptive counters kept"
         );
+        assert_eq!(b.shifted_pieces, 4, "shifted pieces summed");
         assert_eq!(
             (b.inclusion_decided, b.inclusion_undecided),
             (10, 12),

@@ -8,7 +8,7 @@
 
 use num_bigint::BigInt;
 
-use crate::scalar::Rat;
+use crate::scalar::{Rat, rat_from_f64, rat_to_f64};
 use crate::univariate::{Poly, QPoly};
 
 /// `n/d` as a rational. Panics if `d == 0` (a caller bug).
@@ -77,6 +77,22 @@ pub fn planted_count(roots: &[Rat], a: &Rat, b: &Rat) -> usize {
 /// of the stored coefficients, near but not equal to `rᵢ`).
 pub fn planted_f64(roots: &[f64]) -> Poly<f64> {
     Poly::from_roots(roots)
+}
+
+/// The distinct real roots of the *stored* `f64` polynomial in `(lo, hi]` (finite ends), by
+/// exact Sturm isolation refined to `2^-80` and rounded: the oracle for `f64` results.
+pub fn stored_roots(p: &Poly<f64>, lo: f64, hi: f64) -> Vec<f64> {
+    let q = p.to_rat().expect("finite coefficients");
+    let seq = q.sturm().expect("a non-zero polynomial");
+    let (a, b) = (
+        rat_from_f64(lo).expect("finite"),
+        rat_from_f64(hi).expect("finite"),
+    );
+    q.isolate_roots(&a, &b)
+        .expect("finite ends")
+        .iter()
+        .map(|iv| rat_to_f64(&seq.refine_interval(iv, 80).lo))
+        .collect()
 }
 
 #[cfg(test)]

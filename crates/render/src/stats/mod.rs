@@ -462,6 +462,11 @@ impl fmt::Display for StatsReport<'_> {
         )?;
         writeln!(
             f,
+            "    re-expanded, decided in f64      {:>12}",
+            r.shifted_pieces
+        )?;
+        writeln!(
+            f,
             "    beyond double-double             {:>12}",
             r.multiprecision_pieces
         )?;
