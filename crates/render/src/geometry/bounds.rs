@@ -250,24 +250,12 @@ mod tests {
         let bits = |s: Option<(f64, f64)>| s.map(|(a, b)| (a.to_bits(), b.to_bits()));
         let (mut hits, mut misses) = (0, 0);
         for k in 0..8000 {
-            let mut o = DVec3::new(
-                rng.gen_range(-6.0..6.0),
-                rng.gen_range(-6.0..6.0),
-                rng.gen_range(-6.0..6.0),
-            );
-            let mut d = DVec3::new(
-                rng.gen_range(-1.0..1.0),
-                rng.gen_range(-1.0..1.0),
-                rng.gen_range(-1.0..1.0),
-            );
+            let mut o = DVec3::from_array(std::array::from_fn(|_| rng.gen_range(-6.0..6.0)));
+            let mut d = DVec3::from_array(std::array::from_fn(|_| rng.gen_range(-1.0..1.0)));
             let b = &boxes[k % boxes.len()];
             if k % 4 != 0 {
                 // Aimed near the box: many of these hit it.
-                let jitter = DVec3::new(
-                    rng.gen_range(-1.0..1.0),
-                    rng.gen_range(-1.0..1.0),
-                    rng.gen_range(-1.0..1.0),
-                );
+                let jitter = DVec3::from_array(std::array::from_fn(|_| rng.gen_range(-1.0..1.0)));
                 d = (b.min + b.max) * 0.5 + jitter - o;
             }
             if k % 3 == 0 {
