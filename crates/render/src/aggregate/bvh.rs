@@ -166,7 +166,9 @@ impl Bvh {
             .enumerate()
             .map(|(i, b)| Item {
                 index: i as u32,
-                bounds: *b,
+                // The box between the two corners, as the slab test reads a box; so every
+                // node box has `min ≤ max`, which `Bounds3::slab_by_sign` needs.
+                bounds: Bounds3::new(b.min.min(b.max), b.min.max(b.max)),
             })
             .collect();
         let mut bvh = Bvh::default();
@@ -290,7 +292,7 @@ impl Bvh {
             if PRUNE {
                 crosses(node, &slab_ray, start..end, t_max)
             } else {
-                node.bounds.slab(&slab_ray, start, end).is_some()
+                node.bounds.slab_by_sign(&slab_ray, start, end).is_some()
             }
         };
         *visits += 1;
@@ -409,7 +411,7 @@ impl Bvh {
 #[inline(always)]
 fn crosses(node: &Node, ray: &SlabRay, range: Range<f64>, t_max: f64) -> bool {
     node.bounds
-        .slab(ray, range.start, range.end)
+        .slab_by_sign(ray, range.start, range.end)
         .is_some_and(|(near, far)| near <= t_max + PRUNE_SLACK_REL * (near.abs() + (far - near)))
 }
 
@@ -651,6 +653,29 @@ mod tests {
         });
         assert_eq!(seen, vec![0, 1], "pruned after the hit: {seen:?}");
         assert!(visits > 0, "visits are counted");
+    }
+
+    /// An item box given with a corner swapped is the box between its corners, as the slab
+    /// test reads it: the node boxes, tested by `slab_by_sign`, need `min ≤ max` (without the
+    /// ordering in `Bvh::new` the ray below misses the leaf of box 3).
+    #[test]
+    fn an_inverted_item_box_is_found() {
+        let mut boxes: Vec<Bounds3> = (0..10).map(|i| unit_box(2.0 * i as f64)).collect();
+        let b = boxes[3];
+        boxes[3] = Bounds3::new(
+            DVec3::new(b.max.x, b.min.y, b.max.z),
+            DVec3::new(b.min.x, b.max.y, b.min.z),
+        );
+        let bvh = Bvh::new(&boxes);
+        for d in [DVec3::NEG_Z, DVec3::new(0.01, 0.02, -1.0)] {
+            let ray = Ray::new(DVec3::new(6.5, 0.5, 5.0), d);
+            let mut seen = Vec::new();
+            bvh.traverse(&ray, 0.0..f64::INFINITY, &mut 0, |i, t| {
+                seen.push(i);
+                Some(t)
+            });
+            assert_eq!(seen, vec![3], "the box under the ray along {d}");
+        }
     }
 
     #[test]

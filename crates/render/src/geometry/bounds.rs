@@ -16,8 +16,10 @@ pub struct Bounds3 {
 }
 
 impl Bounds3 {
-    /// The box with the given corners (`min ≤ max` componentwise is the caller's business; an
-    /// inverted box is empty for [`Bounds3::intersect_ray`]).
+    /// The box with the given corners (`min ≤ max` componentwise is the caller's business: the
+    /// slab tests [`Bounds3::intersect_ray`] and [`Bounds3::slab`] order each slab's two
+    /// distances, so they read an inverted box as the box between its corners;
+    /// [`Bounds3::slab_by_sign`] needs `min ≤ max`).
     pub fn new(min: DVec3, max: DVec3) -> Self {
         Bounds3 { min, max }
     }
@@ -116,6 +118,35 @@ impl Bounds3 {
         // Written as `t0 > t1` (not `t0 <= t1`), so a NaN range answers as the loop did.
         if t0 > t1 { None } else { Some((t0, t1)) }
     }
+
+    /// [`Bounds3::slab`] for a box with `min ≤ max` on every axis, bit for bit, without
+    /// ordering each slab's two distances: the near plane of each slab is picked by the sign
+    /// of the ray's direction, computed once per ray in the [`SlabRay`] (Williams et al. 2005,
+    /// "An efficient and robust ray–box intersection algorithm"; pbrt-v4 `Bounds3::IntersectP`
+    /// with `dirIsNeg`). The hierarchy's node boxes are such boxes (unions of its items' boxes,
+    /// which it orders), and the comparison and two selects per slab were a third of the
+    /// sphereflake's slab-test instructions (issue 12, sixth pass).
+    ///
+    /// Same answer: with `1/d ≥ 0` (`+∞` for a zero component, as a `SlabRay` stores it)
+    /// `(min − o)/d ≤ (max − o)/d` (rounding is monotone) or one of them is NaN, and
+    /// [`Bounds3::slab`] keeps that order; with `1/d < 0` (finite) it swaps them, or they are
+    /// equal — the same value, so the same bits.
+    #[inline(always)]
+    pub fn slab_by_sign(&self, ray: &SlabRay, start: f64, end: f64) -> Option<(f64, f64)> {
+        let (mut t0, mut t1) = (start, end);
+        for k in 0..3 {
+            let (lo, hi) = if ray.neg[k] {
+                (self.max[k], self.min[k])
+            } else {
+                (self.min[k], self.max[k])
+            };
+            let near = (lo - ray.origin[k]) * ray.inv[k];
+            let far = (hi - ray.origin[k]) * ray.inv[k] * FAR_SCALE;
+            t0 = if near > t0 { near } else { t0 };
+            t1 = if far < t1 { far } else { t1 };
+        }
+        if t0 > t1 { None } else { Some((t0, t1)) }
+    }
 }
 
 /// `1 + 2γ(3)`: the enlargement of each slab's far distance (pbrt-v4 §6.8.2), as a constant
@@ -131,6 +162,8 @@ const FAR_SCALE: f64 =
 pub struct SlabRay {
     origin: DVec3,
     inv: DVec3,
+    /// `inv < 0` per axis: the slab's near plane is the box's `max` there.
+    neg: [bool; 3],
 }
 
 impl SlabRay {
@@ -144,7 +177,11 @@ impl SlabRay {
     /// already `+∞` (as [`Ray::new`] stores it).
     #[inline]
     pub(crate) fn from_unsigned_inv(origin: DVec3, inv: DVec3) -> Self {
-        SlabRay { origin, inv }
+        SlabRay {
+            origin,
+            inv,
+            neg: [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0],
+        }
     }
 }
 
@@ -191,6 +228,83 @@ mod tests {
                 "{r:?}"
             );
         }
+    }
+
+    /// The slab test by sign is the general one bit for bit on boxes with `min ≤ max`:
+    /// random rays through a grid of boxes (flat ones included), rays in face planes (NaN
+    /// slabs, either signed zero), ranges starting before and after the origin.
+    #[test]
+    fn slab_by_sign_is_the_slab_test_bit_for_bit() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12);
+        let boxes: Vec<Bounds3> = (0..40)
+            .map(|i| {
+                let lo = DVec3::new(
+                    f64::from(rng.gen_range(-3..3)),
+                    f64::from(rng.gen_range(-3..3)),
+                    rng.gen_range(-3.0..3.0),
+                );
+                Bounds3::new(lo, lo + DVec3::new(1.0, f64::from(i % 3), 0.5))
+            })
+            .collect();
+        let bits = |s: Option<(f64, f64)>| s.map(|(a, b)| (a.to_bits(), b.to_bits()));
+        let (mut hits, mut misses) = (0, 0);
+        for k in 0..8000 {
+            let mut o = DVec3::from_array(std::array::from_fn(|_| rng.gen_range(-6.0..6.0)));
+            let mut d = DVec3::from_array(std::array::from_fn(|_| rng.gen_range(-1.0..1.0)));
+            let b = &boxes[k % boxes.len()];
+            if k % 4 != 0 {
+                // Aimed near the box: many of these hit it.
+                let jitter = DVec3::from_array(std::array::from_fn(|_| rng.gen_range(-1.0..1.0)));
+                d = (b.min + b.max) * 0.5 + jitter - o;
+            }
+            if k % 3 == 0 {
+                // In a face plane of the grid: NaN slabs, with either signed zero.
+                d.x = if k % 2 == 0 { 0.0 } else { -0.0 };
+                o.x = f64::from(rng.gen_range(-3..3));
+            }
+            let ray = Ray::new(o, d).slab_ray();
+            let (start, end) = (rng.gen_range(-2.0..1.0), rng.gen_range(1.0..20.0));
+            let general = b.slab(&ray, start, end);
+            assert_eq!(
+                bits(b.slab_by_sign(&ray, start, end)),
+                bits(general),
+                "{b:?} {ray:?}"
+            );
+            if general.is_some() {
+                hits += 1;
+            } else {
+                misses += 1;
+            }
+        }
+        assert!(
+            hits > 1000 && misses > 1000,
+            "both answers: {hits} {misses}"
+        );
+    }
+
+    /// The slab test reads a box with `min > max` on an axis as the box between its corners
+    /// (the old documentation said such a box was empty, which the test never did): the
+    /// hierarchy orders its items' corners on that reading before using `slab_by_sign`.
+    #[test]
+    fn an_inverted_box_is_the_box_between_its_corners() {
+        let inverted = Bounds3::new(DVec3::new(1.0, 0.0, 1.0), DVec3::new(0.0, 1.0, 0.0));
+        let ordered = Bounds3::new(DVec3::ZERO, DVec3::ONE);
+        for (o, d) in [
+            (DVec3::new(-5.0, 0.5, 0.5), DVec3::X),
+            (DVec3::new(0.5, 0.5, 9.0), DVec3::new(0.1, -0.2, -1.0)),
+            (DVec3::new(-5.0, 2.0, 0.5), DVec3::X),
+        ] {
+            let ray = Ray::new(o, d);
+            let range = 0.0..f64::INFINITY;
+            assert_eq!(
+                inverted.intersect_ray(&ray, range.clone()),
+                ordered.intersect_ray(&ray, range),
+                "{o} {d}"
+            );
+        }
+        let hit = inverted.intersect_ray(&Ray::new(DVec3::new(-5.0, 0.5, 0.5), DVec3::X), 0.0..9.0);
+        assert!(hit.is_some(), "not empty");
     }
 
     #[test]
