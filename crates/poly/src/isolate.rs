@@ -458,7 +458,7 @@ impl Poly<f64> {
                 out.extend(search.found.iter().map(|f| match f {
                     Found::Bracket(b) => RootInterval { lo: b.lo, hi: b.hi },
                     Found::Exact(iv) => iv.clone(),
-                    Found::Shifted(i, b) => search.shifts[*i].interval(b),
+                    Found::Shifted(i, b) => search.shifts[*i as usize].interval(b),
                 }));
             }
             Isolation::Exact(_, ivs) | Isolation::Heuristic(ivs) => out.extend(ivs),
@@ -932,7 +932,7 @@ fn refine_found(
     }
     let bracket = match found {
         Found::Shifted(i, b) => {
-            let shift = &search.shifts[*i];
+            let shift = &search.shifts[*i as usize];
             return Ok(shift.refine(p.coeffs(), b, opts.tolerance(), opts.refine, stats));
         }
         Found::Bracket(b) => Some(*b),
