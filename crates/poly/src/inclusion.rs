@@ -74,6 +74,22 @@ const MAX_DEGREE: usize = 1024;
 /// distinct (undecided).
 const MIN_DISTANCE: f64 = f64::from_bits((1023 - 900) << 52);
 
+/// Squared moduli `|z|²` for which the iteration's shortcuts (`√(re² + im²)`, `conj(z)/|z|²`)
+/// are used: `[2^-1000, 2^1000]`, far enough inside the normal range that neither square
+/// underflowed to lose more than a few ulps of the sum nor overflowed, and the reciprocal
+/// `1/|z|²` is normal too. Outside, `hypot` and Smith's division take over.
+const FAST_NORM_RANGE: std::ops::RangeInclusive<f64> =
+    f64::from_bits((1023 - 1000) << 52)..=f64::from_bits((1023 + 1000) << 52);
+
+/// The starting circles are centred at the roots' centroid `g` when their largest radius
+/// about `g` is below this multiple of `|g|` ([`starting_points`]). Why 2: the Newton
+/// polygon overestimates the spread of real roots spaced evenly about `g` (Wilkinson-20
+/// shifted by 10.5: radius 18.2 for roots within 9.5), and measured on the whole corpora
+/// (sweeps summed, `paper-notes/isolation.md`, "Starting points"): ratio 1 left Wilkinson-20
+/// at 17 sweeps (2: 8) and planted 3–20 at 1 389 (2: 935); 4 and above made the quartics
+/// 1, 10³, 10⁶, 10⁹ kind slower (113 → 251) and planted 80 (116 → 146).
+const CENTRED_START_RATIO: f64 = 2.0;
+
 /// A complex number in `f64`, for the approximations.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct C {
@@ -97,9 +113,18 @@ impl C {
             self.re * o.im + self.im * o.re,
         )
     }
-    /// `1/self` by scaling with the larger part (Smith's rule), so that neither the square
-    /// of a tiny nor of a huge part over- or underflows.
+    /// `1/self`, for the iteration (a heuristic: not used by the certificate). As
+    /// `conj(self)/|self|²` with one division where `|self|²` is comfortably normal
+    /// ([`FAST_NORM_RANGE`]; the Aberth sum takes `n − 1` reciprocals per approximation, and
+    /// a division costs several multiplications); else by scaling with the larger part
+    /// (Smith's rule), so that neither the square of a tiny nor of a huge part over- or
+    /// underflows.
     fn recip(self) -> C {
+        let q = self.re * self.re + self.im * self.im;
+        if FAST_NORM_RANGE.contains(&q) {
+            let r = 1.0 / q;
+            return C::new(self.re * r, -self.im * r);
+        }
         if self.re.abs() >= self.im.abs() {
             let t = self.im / self.re;
             let d = self.re + self.im * t;
@@ -113,8 +138,20 @@ impl C {
     fn div(self, o: C) -> C {
         self.mul(o.recip())
     }
+    /// `|self|` to within an ulp (`hypot`), for the certificate's bounds.
     fn abs(self) -> f64 {
         self.re.hypot(self.im)
+    }
+    /// `|self|` to within a few ulps, for the iteration's heuristics: `√(re² + im²)` where the
+    /// sum of squares is comfortably normal ([`FAST_NORM_RANGE`]), else `hypot`, which the
+    /// iteration would otherwise call `O(n)` times per sweep at several times the cost.
+    fn abs_fast(self) -> f64 {
+        let q = self.re * self.re + self.im * self.im;
+        if FAST_NORM_RANGE.contains(&q) {
+            q.sqrt()
+        } else {
+            self.abs()
+        }
     }
     fn is_finite(self) -> bool {
         self.re.is_finite() && self.im.is_finite()
@@ -137,6 +174,8 @@ struct Scratch {
     brackets: Vec<Bracket>,
     /// Indices of the Newton polygon's vertices.
     hull: Vec<usize>,
+    /// The coefficients of `p(g + y)` for the starting points ([`starting_points`]).
+    shifted: Vec<f64>,
 }
 
 impl Scratch {
@@ -152,6 +191,7 @@ impl Scratch {
         self.shadow.reserve(m.saturating_sub(self.shadow.len()));
         self.brackets.reserve(m.saturating_sub(self.brackets.len()));
         self.hull.reserve(m.saturating_sub(self.hull.len()));
+        self.shifted.reserve(m.saturating_sub(self.shifted.len()));
     }
 }
 
@@ -203,8 +243,9 @@ pub(crate) fn real_brackets(c: &[f64], lo: f64, hi: f64, mut emit: impl FnMut(Br
 /// hull of the points `(i, log₂|aᵢ|)`; an edge from `i` to `j` holds `j − i` roots of
 /// modulus about `(|aᵢ|/|aⱼ|)^{1/(j−i)}`, spread evenly on that circle with an offset angle.
 /// A heuristic: only the certificate's radii matter for correctness. `false` when a circle's
-/// radius is not a positive finite number or `a₀ = 0` (fewer than `n` points).
-fn initial_points(c: &[f64], hull: &mut Vec<usize>, z: &mut Vec<C>) -> bool {
+/// radius is not a positive finite number or `a₀ = 0` (fewer than `n` points). The circles
+/// are centred at `centre`: `c` holds the coefficients of `p(centre + y)`.
+fn initial_points(c: &[f64], centre: f64, hull: &mut Vec<usize>, z: &mut Vec<C>) -> bool {
     let n = c.len() - 1;
     let log = |i: usize| c[i].abs().log2();
     // Andrew's monotone chain, upper part, over the non-zero coefficients.
@@ -236,10 +277,49 @@ fn initial_points(c: &[f64], hull: &mut Vec<usize>, z: &mut Vec<C>) -> bool {
         }
         for l in 0..k {
             let angle = tau * l as f64 / k as f64 + tau * i as f64 / n as f64 + SIGMA;
-            z.push(C::new(radius * angle.cos(), radius * angle.sin()));
+            z.push(C::new(centre + radius * angle.cos(), radius * angle.sin()));
         }
     }
     z.len() == n
+}
+
+/// The starting points: Newton-polygon circles around 0 ([`initial_points`]), or around the
+/// centroid of the roots `g = −aₙ₋₁/(n·aₙ)` when the roots lie off to one side of 0.
+/// Circles around 0 of the moduli of roots clustered at `g` (Wilkinson's `1 … 20`, a
+/// cluster at 2, planted roots in `[0, 1]`) put the starts at distances of order `|g|` from
+/// the roots, and Aberth's iteration approaches them only linearly (the error halving per
+/// sweep) until it is close. Centred at `g` (the Newton polygon of `p(g + y)`, whose
+/// coefficients `shifted` gets by Horner's Taylor shift), the circles match the spread of
+/// the roots about `g`. Used when that spread, the largest circle's radius, is below
+/// [`CENTRED_START_RATIO`]`·|g|`: otherwise the roots surround 0 (Kac, Chebyshev) or span
+/// many scales (roots 1, 10³, 10⁶, 10⁹, whose centroid 2.5·10⁸ is no centre of the small
+/// ones), and the circles around 0 stay. A heuristic, as the circles are.
+fn starting_points(c: &[f64], s: &mut Scratch) -> bool {
+    let n = c.len() - 1;
+    let g = -c[n - 1] / (n as f64 * c[n]);
+    if g != 0.0 && g.is_finite() {
+        // Taylor shift: the coefficients of p(g + y) (Horner's scheme n times, O(n²)).
+        s.shifted.clear();
+        s.shifted.extend_from_slice(c);
+        for i in 0..n {
+            for j in (i..n).rev() {
+                let t = s.shifted[j] + g * s.shifted[j + 1];
+                s.shifted[j] = t;
+            }
+        }
+        if s.shifted.iter().all(|v| v.is_finite())
+            && initial_points(&s.shifted, g, &mut s.hull, &mut s.z)
+        {
+            let spread =
+                s.z.iter()
+                    .map(|z| z.sub(C::new(g, 0.0)).abs_fast())
+                    .fold(0.0, f64::max);
+            if spread < CENTRED_START_RATIO * g.abs() {
+                return true;
+            }
+        }
+    }
+    initial_points(c, 0.0, &mut s.hull, &mut s.z)
 }
 
 /// `p(z)`, `p'(z)` by Horner's rule (complex, or real for a real `z`), plain values for the
@@ -252,7 +332,7 @@ fn horner_c(c: &[f64], z: C) -> (C, C, f64) {
         let (v, d, err) = horner_derivative_and_bound(c, z.re, z.re);
         return (C::new(v, 0.0), C::new(d, 0.0), 2.0 * err);
     }
-    let az = z.abs();
+    let az = z.abs_fast();
     let (mut v, mut d, mut s) = (C::default(), C::default(), 0.0);
     for &ci in c.iter().rev() {
         d = d.mul(z).add(v);
@@ -315,7 +395,7 @@ fn gamma_ratio(k: usize) -> f64 {
 /// when a value overflowed or the start failed; convergence itself is not required (the
 /// certificate judges the result).
 fn approximate(c: &[f64], s: &mut Scratch) -> bool {
-    if !initial_points(c, &mut s.hull, &mut s.z) {
+    if !starting_points(c, s) {
         return false;
     }
     let n = s.z.len();
@@ -332,7 +412,7 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
             if !(p.is_finite() && dp.is_finite() && noise.is_finite()) {
                 return false;
             }
-            if p.abs() <= noise {
+            if p.abs_fast() <= noise {
                 s.done[i] = true;
                 continue;
             }
@@ -350,7 +430,7 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
             }
             let next = zi.sub(w);
             s.z[i] = next;
-            if w.abs() <= 2.0 * f64::EPSILON * next.abs() {
+            if w.abs_fast() <= 2.0 * f64::EPSILON * next.abs_fast() {
                 s.done[i] = true;
             } else {
                 moving = true;
@@ -368,7 +448,7 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
             // non-real root so close to the axis is caught by the certificate (its disc and
             // its conjugate's overlap, or the two real approximations coincide).
             let (p, dp, noise) = horner_c(c, z);
-            let reach = n as f64 * p.abs().max(noise) / dp.abs();
+            let reach = n as f64 * p.abs_fast().max(noise) / dp.abs_fast();
             if z.im.abs() <= reach {
                 s.z[i] = C::new(z.re, 0.0);
             }
