@@ -172,6 +172,8 @@ struct Scratch {
     shadow: Vec<(f64, f64)>,
     /// The brackets found, before they are handed to the caller.
     brackets: Vec<Bracket>,
+    /// The undecided parts `(lo, hi]` of the range, sorted and disjoint.
+    undecided: Vec<(f64, f64)>,
     /// Indices of the Newton polygon's vertices.
     hull: Vec<usize>,
     /// The coefficients of `p(g + y)` for the starting points ([`starting_points`]).
@@ -190,6 +192,8 @@ impl Scratch {
         self.radius.reserve(m.saturating_sub(self.radius.len()));
         self.shadow.reserve(m.saturating_sub(self.shadow.len()));
         self.brackets.reserve(m.saturating_sub(self.brackets.len()));
+        self.undecided
+            .reserve(m.saturating_sub(self.undecided.len()));
         self.hull.reserve(m.saturating_sub(self.hull.len()));
         self.shifted.reserve(m.saturating_sub(self.shifted.len()));
     }
@@ -204,22 +208,36 @@ thread_local! {
     static SCRATCH: Cell<Scratch> = Cell::new(Scratch::default());
 }
 
-/// Certified brackets of every distinct real root of `c` (coefficients lowest degree first)
-/// in `(lo, hi]`, by inclusion discs; each bracket is handed to `emit`, in increasing order.
-/// Returns `false`, having emitted nothing, when the discs do not decide every root of the
-/// range (the caller then answers by subdivision).
+/// What the discs say about one part of the query range ([`real_pieces`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Piece {
+    /// Exactly one root of the range, simple, in this certified bracket.
+    Root(Bracket),
+    /// `(lo, hi]`: a part of the range where the discs decide nothing (a cluster, a
+    /// non-real disc meeting the axis, an uncertain sign); its roots are for subdivision.
+    Undecided(f64, f64),
+}
+
+/// The real roots of `c` (coefficients lowest degree first) in `(lo, hi]` by inclusion
+/// discs, as [`Piece`]s handed to `emit` in increasing order: a bracket for each root that
+/// an isolated disc decides, and the parts of the range that the discs leave undecided.
+/// Returns `false`, having emitted nothing, when the discs say nothing at all (no
+/// approximations, overflow, centres too close for the certificate): the caller then
+/// answers the whole range by subdivision.
 ///
 /// # Accuracy
 /// Certified, when it returns `true`: each bracket `(lo', hi')` holds exactly one root of
 /// the stored polynomial, simple, with certified opposite signs at its ends (`s_lo` that of
-/// `p(lo')`), and the roots of `(lo, hi]` are exactly those of the brackets. `lo < hi`,
-/// finite coefficients, `c[n] ≠ 0` and `n ≥ 1` are assumed by the caller's validation;
-/// anything else returns `false`.
+/// `p(lo')`); the roots of `(lo, hi]` are exactly those of the brackets and those of the
+/// undecided parts `(lo'', hi'']`, which are disjoint from the brackets and from each other
+/// (every real root lies in the real shadow of some disc, and an undecided part is a union
+/// of shadows cut to the range). `lo < hi`, finite coefficients, `c[n] ≠ 0` and `n ≥ 1` are
+/// assumed by the caller's validation; anything else returns `false`.
 ///
 /// # Complexity
 /// `O(n²)` per Aberth sweep, at most [`MAX_ABERTH_SWEEPS`] sweeps; `O(n²)` for the
 /// certificate.
-pub(crate) fn real_brackets(c: &[f64], lo: f64, hi: f64, mut emit: impl FnMut(Bracket)) -> bool {
+pub(crate) fn real_pieces(c: &[f64], lo: f64, hi: f64, mut emit: impl FnMut(Piece)) -> bool {
     let n = c.len().saturating_sub(1);
     if !(1..=MAX_DEGREE).contains(&n)
         || c[n] == 0.0
@@ -229,10 +247,22 @@ pub(crate) fn real_brackets(c: &[f64], lo: f64, hi: f64, mut emit: impl FnMut(Br
     }
     let mut s = SCRATCH.take();
     s.reserve(n);
-    let decided = approximate(c, &mut s) && certify(c, &mut s) && decide(c, lo, hi, &mut s);
+    let decided = approximate(c, &mut s) && certify(c, &mut s);
     if decided {
-        for b in &s.brackets {
-            emit(*b);
+        decide(c, lo, hi, &mut s);
+        // Both lists are sorted and disjoint: merge them in order.
+        let (mut i, mut j) = (0, 0);
+        while i < s.brackets.len() || j < s.undecided.len() {
+            let bracket_first = j == s.undecided.len()
+                || (i < s.brackets.len() && s.brackets[i].lo < s.undecided[j].0);
+            if bracket_first {
+                emit(Piece::Root(s.brackets[i]));
+                i += 1;
+            } else {
+                let (a, b) = s.undecided[j];
+                emit(Piece::Undecided(a, b));
+                j += 1;
+            }
         }
     }
     SCRATCH.set(s);
@@ -605,12 +635,15 @@ fn discs_apart(a: C, ra: f64, b: C, rb: f64) -> bool {
     q * (1.0 - 4.0 * f64::EPSILON) > t * t * (1.0 + 2.0 * f64::EPSILON)
 }
 
-/// Step 3: the real roots of `(lo, hi]` from the discs (module docs), as brackets in
-/// `s.brackets`, sorted. `false` when some root of the range is not accounted for.
-fn decide(c: &[f64], lo: f64, hi: f64, s: &mut Scratch) -> bool {
+/// Step 3: the real roots of `(lo, hi]` from the discs (module docs): brackets in
+/// `s.brackets` for the shadows that an isolated real-centred disc decides, and in
+/// `s.undecided` the other shadows meeting the range, cut to it and merged where they
+/// overlap; both sorted.
+fn decide(c: &[f64], lo: f64, hi: f64, s: &mut Scratch) {
     let n = s.z.len();
     s.shadow.clear();
     s.brackets.clear();
+    s.undecided.clear();
     for i in 0..n {
         let (z, r) = (s.z[i], s.radius[i]);
         // The disc meets the axis only if |Im z| ≤ r (exact comparison of stored numbers);
@@ -627,45 +660,72 @@ fn decide(c: &[f64], lo: f64, hi: f64, s: &mut Scratch) -> bool {
         if a.is_nan() || b < lo || a > hi {
             continue;
         }
-        let (z, r) = (s.z[i], s.radius[i]);
-        if z.im != 0.0 {
-            return false;
-        }
-        for j in 0..n {
-            if j == i {
-                continue;
-            }
-            let (sa, sb) = s.shadow[j];
-            let shadows_apart = sa.is_nan() || sb < a || sa > b;
-            if !(shadows_apart && discs_apart(z, r, s.z[j], s.radius[j])) {
-                return false;
+        if !decide_shadow(c, lo, hi, i, s) {
+            // Its roots, if any, lie in the open (a, b): the part (a, b] of the range.
+            let (l, h) = (a.max(lo), b.min(hi));
+            if l < h {
+                s.undecided.push((l, h));
             }
         }
-        // One simple real root in (a, b), and no other real root there: certified signs.
-        let s_a = certified_sign(c, a, 0.0);
-        let s_b = certified_sign(c, b, 0.0);
-        if s_a == 0 || s_b != -s_a {
-            return false;
-        }
-        let (l, s_l) = if a < lo {
-            (lo, certified_sign(c, lo, 0.0))
-        } else {
-            (a, s_a)
-        };
-        let (h, s_h) = if b > hi {
-            (hi, certified_sign(c, hi, 0.0))
-        } else {
-            (b, s_b)
-        };
-        if s_l == 0 || s_h == 0 {
-            return false;
-        }
-        if s_l == -s_h {
-            s.brackets.push(Bracket::new(l, h, s_l));
-        }
-        // Equal signs: the root is in (a, lo) or (hi, b), outside the range.
     }
     s.brackets.sort_unstable_by(|x, y| x.lo.total_cmp(&y.lo));
+    s.undecided.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
+    // Merge overlapping or touching parts, in place.
+    let mut k = 0;
+    for j in 0..s.undecided.len() {
+        let (l, h) = s.undecided[j];
+        if k > 0 && l <= s.undecided[k - 1].1 {
+            s.undecided[k - 1].1 = s.undecided[k - 1].1.max(h);
+        } else {
+            s.undecided[k] = (l, h);
+            k += 1;
+        }
+    }
+    s.undecided.truncate(k);
+}
+
+/// Whether the disc `i`, whose shadow `(a, b)` meets `[lo, hi]`, decides its part of the
+/// range: a real centre, a disc and shadow apart from every other, certified opposite signs
+/// at `a` and `b` (exactly one simple root in `(a, b)`, and no other real root there). Its
+/// bracket, cut to the range with the certified sign at a cut end, goes to `s.brackets`
+/// when the root is in `(lo, hi]`; equal signs at the cut put the root outside the range.
+fn decide_shadow(c: &[f64], lo: f64, hi: f64, i: usize, s: &mut Scratch) -> bool {
+    let (a, b) = s.shadow[i];
+    let (z, r) = (s.z[i], s.radius[i]);
+    if z.im != 0.0 {
+        return false;
+    }
+    for j in 0..s.z.len() {
+        if j == i {
+            continue;
+        }
+        let (sa, sb) = s.shadow[j];
+        let shadows_apart = sa.is_nan() || sb < a || sa > b;
+        if !(shadows_apart && discs_apart(z, r, s.z[j], s.radius[j])) {
+            return false;
+        }
+    }
+    let s_a = certified_sign(c, a, 0.0);
+    let s_b = certified_sign(c, b, 0.0);
+    if s_a == 0 || s_b != -s_a {
+        return false;
+    }
+    let (l, s_l) = if a < lo {
+        (lo, certified_sign(c, lo, 0.0))
+    } else {
+        (a, s_a)
+    };
+    let (h, s_h) = if b > hi {
+        (hi, certified_sign(c, hi, 0.0))
+    } else {
+        (b, s_b)
+    };
+    if s_l == 0 || s_h == 0 {
+        return false;
+    }
+    if s_l == -s_h {
+        s.brackets.push(Bracket::new(l, h, s_l));
+    }
     true
 }
 
@@ -786,7 +846,38 @@ mod tests {
                 (0, 1),
                 "undecided, answered by subdivision: {stats:?}"
             );
+            // The discs of −1, 2 and 3 decide those roots; only the shadows of the pair
+            // go to subdivision, as one part.
+            assert_eq!(
+                stats.inclusion_subranges, 1,
+                "one undecided part: {stats:?}"
+            );
         }
+    }
+
+    #[test]
+    fn query_ends_inside_an_undecided_part_keep_the_half_open_range() {
+        // A double root at 0.25 (its discs overlap: an undecided part around it) and simple
+        // roots the discs decide; the ranges end at, just below and just above 0.25.
+        let p = Poly::from_roots(&[0.25, 0.25, -1.0, 2.0, 3.0, 5.0]);
+        for (lo, hi) in [
+            (-10.0, 0.25),
+            (0.25, 10.0),
+            (0.25f64.next_down(), 0.25f64.next_up()),
+            (-0.5, 0.25f64.next_down()),
+            (0.25f64.next_up(), 2.5),
+        ] {
+            let stats = check(&p, lo, hi);
+            assert!(
+                stats.inclusion_subranges <= 1 && stats.exact_fallbacks <= 1,
+                "({lo}, {hi}]: {stats:?}"
+            );
+        }
+        let stats = check(&p, -10.0, 10.0);
+        assert_eq!(
+            stats.inclusion_subranges, 1,
+            "one undecided part: {stats:?}"
+        );
     }
 
     #[test]
@@ -825,11 +916,11 @@ mod tests {
             check(&p, -b, b);
         }
         assert!(
-            !real_brackets(&[1.0, 2.0, 0.0], -1.0, 1.0, |_| {}),
+            !real_pieces(&[1.0, 2.0, 0.0], -1.0, 1.0, |_| {}),
             "a zero leading coefficient is refused"
         );
         assert!(
-            !real_brackets(&[1.0, f64::NAN, 1.0], -1.0, 1.0, |_| {}),
+            !real_pieces(&[1.0, f64::NAN, 1.0], -1.0, 1.0, |_| {}),
             "NaN is refused"
         );
     }
