@@ -448,12 +448,7 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
             }
             // Aberth's correction w = N/(1 − N·Σ 1/(zᵢ − zⱼ)), N = p/p' (Bini 1996, eq. 6).
             let newton = p.div(dp);
-            let mut sum = C::default();
-            for (j, &zj) in s.z.iter().enumerate() {
-                if j != i {
-                    sum = sum.add(zi.sub(zj).recip());
-                }
-            }
+            let sum = aberth_sum(zi, &s.z[..i], &s.z[i + 1..]);
             let w = newton.div(C::new(1.0, 0.0).sub(newton.mul(sum)));
             if !w.is_finite() {
                 return false;
@@ -514,12 +509,7 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
             }
             let (_, d, _) = horner_derivative_and_bound(c, x, x);
             let newton = v / d;
-            let mut sum = 0.0;
-            for (j, &zj) in s.z.iter().enumerate() {
-                if j != i {
-                    sum += C::new(x, 0.0).sub(zj).recip().re;
-                }
-            }
+            let sum = aberth_sum(C::new(x, 0.0), &s.z[..i], &s.z[i + 1..]).re;
             let next = x - newton / (1.0 - newton * sum);
             if !next.is_finite() {
                 s.done[i] = true;
@@ -536,6 +526,27 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
             break;
         }
     }
+}
+
+/// Aberth's sum `Σ_j 1/(z − zⱼ)` over the other approximations (`before` and `after` `zᵢ`),
+/// for the iteration only. Each term as `conj(d)·(1/|d|²)`: one division, no test per term;
+/// where some `|d|²` over- or underflowed the sum is not finite, or (for `|d|² > 2^1000`)
+/// a term that is negligible anyway came out 0, and a non-finite sum is recomputed with
+/// [`C::recip`] (Smith's rule where needed).
+fn aberth_sum(z: C, before: &[C], after: &[C]) -> C {
+    let mut sum = C::default();
+    for &zj in before.iter().chain(after) {
+        let d = z.sub(zj);
+        let r = 1.0 / (d.re * d.re + d.im * d.im);
+        sum = C::new(sum.re + d.re * r, sum.im - d.im * r);
+    }
+    if !sum.is_finite() {
+        sum = C::default();
+        for &zj in before.iter().chain(after) {
+            sum = sum.add(z.sub(zj).recip());
+        }
+    }
+    sum
 }
 
 /// A positive normal number as `m·2^e`, `m ∈ [1, 2)` (exact), for products of many factors
