@@ -23,7 +23,8 @@
 //!    the query range belongs to such a disc and meets no other shadow, the roots in the range
 //!    are exactly those shadows' roots, and certified end signs turn each into a bracket.
 //!    Anything else (overlapping discs, a non-real disc touching the range, a sign that
-//!    cannot be certified) is *undecided*: the caller answers the whole query by subdivision.
+//!    cannot be certified) is *undecided*: those shadows, cut to the range and merged, are
+//!    the parts the caller answers by subdivision, each alone (`Piece::Undecided`).
 
 use std::cell::Cell;
 
