@@ -222,7 +222,7 @@ fn report(corpus: &Corpus, solvers: &[Method], flint: bool) {
         corpus.x_tol
     );
     println!(
-        "| solver | time / query | × polycool | wrong | poly: adaptive pieces (re-expanded in f64) / multiprecision / adaptive refines / exact fallbacks / inclusion discs decided:undecided |"
+        "| solver | time / query | × polycool | wrong | poly: adaptive pieces (re-expanded in f64) / multiprecision / adaptive refines / exact fallbacks / inclusion discs decided:undecided (undecided parts) |"
     );
     println!("|---|---|---|---|---|");
     for r in &rows {
@@ -259,14 +259,15 @@ fn report(corpus: &Corpus, solvers: &[Method], flint: bool) {
 
 fn stats_cell(s: &RootStats) -> String {
     format!(
-        "{} ({} re-expanded) / {} / {} / {} / {}:{}",
+        "{} ({} re-expanded) / {} / {} / {} / {}:{} ({} parts)",
         s.adaptive_pieces,
         s.shifted_pieces,
         s.multiprecision_pieces,
         s.adaptive_refines,
         s.exact_fallbacks + s.refine_fallbacks,
         s.inclusion_decided,
-        s.inclusion_undecided
+        s.inclusion_undecided,
+        s.inclusion_subranges
     )
 }
 
@@ -413,7 +414,7 @@ fn main() {
         };
         let (wrong, stats) = run_poly_only(&corpus);
         println!(
-            "{}: {} queries, {wrong} wrong, adaptive (re-expanded) / mp / refines / exact / discs decided:undecided: {}",
+            "{}: {} queries, {wrong} wrong, adaptive (re-expanded) / mp / refines / exact / discs decided:undecided (undecided parts): {}",
             corpus.title,
             corpus.queries.len(),
             stats_cell(&stats)

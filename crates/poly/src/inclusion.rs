@@ -23,7 +23,8 @@
 //!    the query range belongs to such a disc and meets no other shadow, the roots in the range
 //!    are exactly those shadows' roots, and certified end signs turn each into a bracket.
 //!    Anything else (overlapping discs, a non-real disc touching the range, a sign that
-//!    cannot be certified) is *undecided*: the caller answers the whole query by subdivision.
+//!    cannot be certified) is *undecided*: those shadows, cut to the range and merged, are
+//!    the parts the caller answers by subdivision, each alone (`Piece::Undecided`).
 
 use std::cell::Cell;
 
@@ -74,6 +75,22 @@ const MAX_DEGREE: usize = 1024;
 /// distinct (undecided).
 const MIN_DISTANCE: f64 = f64::from_bits((1023 - 900) << 52);
 
+/// Squared moduli `|z|²` for which the iteration's shortcuts (`√(re² + im²)`, `conj(z)/|z|²`)
+/// are used: `[2^-1000, 2^1000]`, far enough inside the normal range that neither square
+/// underflowed to lose more than a few ulps of the sum nor overflowed, and the reciprocal
+/// `1/|z|²` is normal too. Outside, `hypot` and Smith's division take over.
+const FAST_NORM_RANGE: std::ops::RangeInclusive<f64> =
+    f64::from_bits((1023 - 1000) << 52)..=f64::from_bits((1023 + 1000) << 52);
+
+/// The starting circles are centred at the roots' centroid `g` when their largest radius
+/// about `g` is below this multiple of `|g|` ([`starting_points`]). Why 2: the Newton
+/// polygon overestimates the spread of real roots spaced evenly about `g` (Wilkinson-20
+/// shifted by 10.5: radius 18.2 for roots within 9.5), and measured on the whole corpora
+/// (sweeps summed, `paper-notes/isolation.md`, "Starting points"): ratio 1 left Wilkinson-20
+/// at 17 sweeps (2: 8) and planted 3–20 at 1 389 (2: 935); 4 and above made the quartics
+/// 1, 10³, 10⁶, 10⁹ kind slower (113 → 251) and planted 80 (116 → 146).
+const CENTRED_START_RATIO: f64 = 2.0;
+
 /// A complex number in `f64`, for the approximations.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct C {
@@ -97,9 +114,18 @@ impl C {
             self.re * o.im + self.im * o.re,
         )
     }
-    /// `1/self` by scaling with the larger part (Smith's rule), so that neither the square
-    /// of a tiny nor of a huge part over- or underflows.
+    /// `1/self`, for the iteration (a heuristic: not used by the certificate). As
+    /// `conj(self)/|self|²` with one division where `|self|²` is comfortably normal
+    /// ([`FAST_NORM_RANGE`]; the Aberth sum takes `n − 1` reciprocals per approximation, and
+    /// a division costs several multiplications); else by scaling with the larger part
+    /// (Smith's rule), so that neither the square of a tiny nor of a huge part over- or
+    /// underflows.
     fn recip(self) -> C {
+        let q = self.re * self.re + self.im * self.im;
+        if FAST_NORM_RANGE.contains(&q) {
+            let r = 1.0 / q;
+            return C::new(self.re * r, -self.im * r);
+        }
         if self.re.abs() >= self.im.abs() {
             let t = self.im / self.re;
             let d = self.re + self.im * t;
@@ -113,8 +139,20 @@ impl C {
     fn div(self, o: C) -> C {
         self.mul(o.recip())
     }
+    /// `|self|` to within an ulp (`hypot`), for the certificate's bounds.
     fn abs(self) -> f64 {
         self.re.hypot(self.im)
+    }
+    /// `|self|` to within a few ulps, for the iteration's heuristics: `√(re² + im²)` where the
+    /// sum of squares is comfortably normal ([`FAST_NORM_RANGE`]), else `hypot`, which the
+    /// iteration would otherwise call `O(n)` times per sweep at several times the cost.
+    fn abs_fast(self) -> f64 {
+        let q = self.re * self.re + self.im * self.im;
+        if FAST_NORM_RANGE.contains(&q) {
+            q.sqrt()
+        } else {
+            self.abs()
+        }
     }
     fn is_finite(self) -> bool {
         self.re.is_finite() && self.im.is_finite()
@@ -135,8 +173,12 @@ struct Scratch {
     shadow: Vec<(f64, f64)>,
     /// The brackets found, before they are handed to the caller.
     brackets: Vec<Bracket>,
+    /// The undecided parts `(lo, hi]` of the range, sorted and disjoint.
+    undecided: Vec<(f64, f64)>,
     /// Indices of the Newton polygon's vertices.
     hull: Vec<usize>,
+    /// The coefficients of `p(g + y)` for the starting points ([`starting_points`]).
+    shifted: Vec<f64>,
 }
 
 impl Scratch {
@@ -151,7 +193,10 @@ impl Scratch {
         self.radius.reserve(m.saturating_sub(self.radius.len()));
         self.shadow.reserve(m.saturating_sub(self.shadow.len()));
         self.brackets.reserve(m.saturating_sub(self.brackets.len()));
+        self.undecided
+            .reserve(m.saturating_sub(self.undecided.len()));
         self.hull.reserve(m.saturating_sub(self.hull.len()));
+        self.shifted.reserve(m.saturating_sub(self.shifted.len()));
     }
 }
 
@@ -164,22 +209,36 @@ thread_local! {
     static SCRATCH: Cell<Scratch> = Cell::new(Scratch::default());
 }
 
-/// Certified brackets of every distinct real root of `c` (coefficients lowest degree first)
-/// in `(lo, hi]`, by inclusion discs; each bracket is handed to `emit`, in increasing order.
-/// Returns `false`, having emitted nothing, when the discs do not decide every root of the
-/// range (the caller then answers by subdivision).
+/// What the discs say about one part of the query range ([`real_pieces`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Piece {
+    /// Exactly one root of the range, simple, in this certified bracket.
+    Root(Bracket),
+    /// `(lo, hi]`: a part of the range where the discs decide nothing (a cluster, a
+    /// non-real disc meeting the axis, an uncertain sign); its roots are for subdivision.
+    Undecided(f64, f64),
+}
+
+/// The real roots of `c` (coefficients lowest degree first) in `(lo, hi]` by inclusion
+/// discs, as [`Piece`]s handed to `emit` in increasing order: a bracket for each root that
+/// an isolated disc decides, and the parts of the range that the discs leave undecided.
+/// Returns `false`, having emitted nothing, when the discs say nothing at all (no
+/// approximations, overflow, centres too close for the certificate): the caller then
+/// answers the whole range by subdivision.
 ///
 /// # Accuracy
 /// Certified, when it returns `true`: each bracket `(lo', hi')` holds exactly one root of
 /// the stored polynomial, simple, with certified opposite signs at its ends (`s_lo` that of
-/// `p(lo')`), and the roots of `(lo, hi]` are exactly those of the brackets. `lo < hi`,
-/// finite coefficients, `c[n] ≠ 0` and `n ≥ 1` are assumed by the caller's validation;
-/// anything else returns `false`.
+/// `p(lo')`); the roots of `(lo, hi]` are exactly those of the brackets and those of the
+/// undecided parts `(lo'', hi'']`, which are disjoint from the brackets and from each other
+/// (every real root lies in the real shadow of some disc, and an undecided part is a union
+/// of shadows cut to the range). `lo < hi`, finite coefficients, `c[n] ≠ 0` and `n ≥ 1` are
+/// assumed by the caller's validation; anything else returns `false`.
 ///
 /// # Complexity
 /// `O(n²)` per Aberth sweep, at most [`MAX_ABERTH_SWEEPS`] sweeps; `O(n²)` for the
 /// certificate.
-pub(crate) fn real_brackets(c: &[f64], lo: f64, hi: f64, mut emit: impl FnMut(Bracket)) -> bool {
+pub(crate) fn real_pieces(c: &[f64], lo: f64, hi: f64, mut emit: impl FnMut(Piece)) -> bool {
     let n = c.len().saturating_sub(1);
     if !(1..=MAX_DEGREE).contains(&n)
         || c[n] == 0.0
@@ -189,10 +248,22 @@ pub(crate) fn real_brackets(c: &[f64], lo: f64, hi: f64, mut emit: impl FnMut(Br
     }
     let mut s = SCRATCH.take();
     s.reserve(n);
-    let decided = approximate(c, &mut s) && certify(c, &mut s) && decide(c, lo, hi, &mut s);
+    let decided = approximate(c, &mut s) && certify(c, &mut s);
     if decided {
-        for b in &s.brackets {
-            emit(*b);
+        decide(c, lo, hi, &mut s);
+        // Both lists are sorted and disjoint: merge them in order.
+        let (mut i, mut j) = (0, 0);
+        while i < s.brackets.len() || j < s.undecided.len() {
+            let bracket_first = j == s.undecided.len()
+                || (i < s.brackets.len() && s.brackets[i].lo < s.undecided[j].0);
+            if bracket_first {
+                emit(Piece::Root(s.brackets[i]));
+                i += 1;
+            } else {
+                let (a, b) = s.undecided[j];
+                emit(Piece::Undecided(a, b));
+                j += 1;
+            }
         }
     }
     SCRATCH.set(s);
@@ -203,8 +274,9 @@ pub(crate) fn real_brackets(c: &[f64], lo: f64, hi: f64, mut emit: impl FnMut(Br
 /// hull of the points `(i, log₂|aᵢ|)`; an edge from `i` to `j` holds `j − i` roots of
 /// modulus about `(|aᵢ|/|aⱼ|)^{1/(j−i)}`, spread evenly on that circle with an offset angle.
 /// A heuristic: only the certificate's radii matter for correctness. `false` when a circle's
-/// radius is not a positive finite number or `a₀ = 0` (fewer than `n` points).
-fn initial_points(c: &[f64], hull: &mut Vec<usize>, z: &mut Vec<C>) -> bool {
+/// radius is not a positive finite number or `a₀ = 0` (fewer than `n` points). The circles
+/// are centred at `centre`: `c` holds the coefficients of `p(centre + y)`.
+fn initial_points(c: &[f64], centre: f64, hull: &mut Vec<usize>, z: &mut Vec<C>) -> bool {
     let n = c.len() - 1;
     let log = |i: usize| c[i].abs().log2();
     // Andrew's monotone chain, upper part, over the non-zero coefficients.
@@ -236,10 +308,49 @@ fn initial_points(c: &[f64], hull: &mut Vec<usize>, z: &mut Vec<C>) -> bool {
         }
         for l in 0..k {
             let angle = tau * l as f64 / k as f64 + tau * i as f64 / n as f64 + SIGMA;
-            z.push(C::new(radius * angle.cos(), radius * angle.sin()));
+            z.push(C::new(centre + radius * angle.cos(), radius * angle.sin()));
         }
     }
     z.len() == n
+}
+
+/// The starting points: Newton-polygon circles around 0 ([`initial_points`]), or around the
+/// centroid of the roots `g = −aₙ₋₁/(n·aₙ)` when the roots lie off to one side of 0.
+/// Circles around 0 of the moduli of roots clustered at `g` (Wilkinson's `1 … 20`, a
+/// cluster at 2, planted roots in `[0, 1]`) put the starts at distances of order `|g|` from
+/// the roots, and Aberth's iteration approaches them only linearly (the error halving per
+/// sweep) until it is close. Centred at `g` (the Newton polygon of `p(g + y)`, whose
+/// coefficients `shifted` gets by Horner's Taylor shift), the circles match the spread of
+/// the roots about `g`. Used when that spread, the largest circle's radius, is below
+/// [`CENTRED_START_RATIO`]`·|g|`: otherwise the roots surround 0 (Kac, Chebyshev) or span
+/// many scales (roots 1, 10³, 10⁶, 10⁹, whose centroid 2.5·10⁸ is no centre of the small
+/// ones), and the circles around 0 stay. A heuristic, as the circles are.
+fn starting_points(c: &[f64], s: &mut Scratch) -> bool {
+    let n = c.len() - 1;
+    let g = -c[n - 1] / (n as f64 * c[n]);
+    if g != 0.0 && g.is_finite() {
+        // Taylor shift: the coefficients of p(g + y) (Horner's scheme n times, O(n²)).
+        s.shifted.clear();
+        s.shifted.extend_from_slice(c);
+        for i in 0..n {
+            for j in (i..n).rev() {
+                let t = s.shifted[j] + g * s.shifted[j + 1];
+                s.shifted[j] = t;
+            }
+        }
+        if s.shifted.iter().all(|v| v.is_finite())
+            && initial_points(&s.shifted, g, &mut s.hull, &mut s.z)
+        {
+            let spread =
+                s.z.iter()
+                    .map(|z| z.sub(C::new(g, 0.0)).abs_fast())
+                    .fold(0.0, f64::max);
+            if spread < CENTRED_START_RATIO * g.abs() {
+                return true;
+            }
+        }
+    }
+    initial_points(c, 0.0, &mut s.hull, &mut s.z)
 }
 
 /// `p(z)`, `p'(z)` by Horner's rule (complex, or real for a real `z`), plain values for the
@@ -252,7 +363,7 @@ fn horner_c(c: &[f64], z: C) -> (C, C, f64) {
         let (v, d, err) = horner_derivative_and_bound(c, z.re, z.re);
         return (C::new(v, 0.0), C::new(d, 0.0), 2.0 * err);
     }
-    let az = z.abs();
+    let az = z.abs_fast();
     let (mut v, mut d, mut s) = (C::default(), C::default(), 0.0);
     for &ci in c.iter().rev() {
         d = d.mul(z).add(v);
@@ -315,7 +426,7 @@ fn gamma_ratio(k: usize) -> f64 {
 /// when a value overflowed or the start failed; convergence itself is not required (the
 /// certificate judges the result).
 fn approximate(c: &[f64], s: &mut Scratch) -> bool {
-    if !initial_points(c, &mut s.hull, &mut s.z) {
+    if !starting_points(c, s) {
         return false;
     }
     let n = s.z.len();
@@ -332,25 +443,20 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
             if !(p.is_finite() && dp.is_finite() && noise.is_finite()) {
                 return false;
             }
-            if p.abs() <= noise {
+            if p.abs_fast() <= noise {
                 s.done[i] = true;
                 continue;
             }
             // Aberth's correction w = N/(1 − N·Σ 1/(zᵢ − zⱼ)), N = p/p' (Bini 1996, eq. 6).
             let newton = p.div(dp);
-            let mut sum = C::default();
-            for (j, &zj) in s.z.iter().enumerate() {
-                if j != i {
-                    sum = sum.add(zi.sub(zj).recip());
-                }
-            }
+            let sum = aberth_sum(zi, &s.z[..i], &s.z[i + 1..]);
             let w = newton.div(C::new(1.0, 0.0).sub(newton.mul(sum)));
             if !w.is_finite() {
                 return false;
             }
             let next = zi.sub(w);
             s.z[i] = next;
-            if w.abs() <= 2.0 * f64::EPSILON * next.abs() {
+            if w.abs_fast() <= 2.0 * f64::EPSILON * next.abs_fast() {
                 s.done[i] = true;
             } else {
                 moving = true;
@@ -368,7 +474,7 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
             // non-real root so close to the axis is caught by the certificate (its disc and
             // its conjugate's overlap, or the two real approximations coincide).
             let (p, dp, noise) = horner_c(c, z);
-            let reach = n as f64 * p.abs().max(noise) / dp.abs();
+            let reach = n as f64 * p.abs_fast().max(noise) / dp.abs_fast();
             if z.im.abs() <= reach {
                 s.z[i] = C::new(z.re, 0.0);
             }
@@ -404,12 +510,7 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
             }
             let (_, d, _) = horner_derivative_and_bound(c, x, x);
             let newton = v / d;
-            let mut sum = 0.0;
-            for (j, &zj) in s.z.iter().enumerate() {
-                if j != i {
-                    sum += C::new(x, 0.0).sub(zj).recip().re;
-                }
-            }
+            let sum = aberth_sum(C::new(x, 0.0), &s.z[..i], &s.z[i + 1..]).re;
             let next = x - newton / (1.0 - newton * sum);
             if !next.is_finite() {
                 s.done[i] = true;
@@ -426,6 +527,27 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
             break;
         }
     }
+}
+
+/// Aberth's sum `Σ_j 1/(z − zⱼ)` over the other approximations (`before` and `after` `zᵢ`),
+/// for the iteration only. Each term as `conj(d)·(1/|d|²)`: one division, no test per term;
+/// where some `|d|²` over- or underflowed the sum is not finite, or (for `|d|² > 2^1000`)
+/// a term that is negligible anyway came out 0, and a non-finite sum is recomputed with
+/// [`C::recip`] (Smith's rule where needed).
+fn aberth_sum(z: C, before: &[C], after: &[C]) -> C {
+    let mut sum = C::default();
+    for &zj in before.iter().chain(after) {
+        let d = z.sub(zj);
+        let r = 1.0 / (d.re * d.re + d.im * d.im);
+        sum = C::new(sum.re + d.re * r, sum.im - d.im * r);
+    }
+    if !sum.is_finite() {
+        sum = C::default();
+        for &zj in before.iter().chain(after) {
+            sum = sum.add(z.sub(zj).recip());
+        }
+    }
+    sum
 }
 
 /// A positive normal number as `m·2^e`, `m ∈ [1, 2)` (exact), for products of many factors
@@ -525,12 +647,15 @@ fn discs_apart(a: C, ra: f64, b: C, rb: f64) -> bool {
     q * (1.0 - 4.0 * f64::EPSILON) > t * t * (1.0 + 2.0 * f64::EPSILON)
 }
 
-/// Step 3: the real roots of `(lo, hi]` from the discs (module docs), as brackets in
-/// `s.brackets`, sorted. `false` when some root of the range is not accounted for.
-fn decide(c: &[f64], lo: f64, hi: f64, s: &mut Scratch) -> bool {
+/// Step 3: the real roots of `(lo, hi]` from the discs (module docs): brackets in
+/// `s.brackets` for the shadows that an isolated real-centred disc decides, and in
+/// `s.undecided` the other shadows meeting the range, cut to it and merged where they
+/// overlap; both sorted.
+fn decide(c: &[f64], lo: f64, hi: f64, s: &mut Scratch) {
     let n = s.z.len();
     s.shadow.clear();
     s.brackets.clear();
+    s.undecided.clear();
     for i in 0..n {
         let (z, r) = (s.z[i], s.radius[i]);
         // The disc meets the axis only if |Im z| ≤ r (exact comparison of stored numbers);
@@ -547,45 +672,72 @@ fn decide(c: &[f64], lo: f64, hi: f64, s: &mut Scratch) -> bool {
         if a.is_nan() || b < lo || a > hi {
             continue;
         }
-        let (z, r) = (s.z[i], s.radius[i]);
-        if z.im != 0.0 {
-            return false;
-        }
-        for j in 0..n {
-            if j == i {
-                continue;
-            }
-            let (sa, sb) = s.shadow[j];
-            let shadows_apart = sa.is_nan() || sb < a || sa > b;
-            if !(shadows_apart && discs_apart(z, r, s.z[j], s.radius[j])) {
-                return false;
+        if !decide_shadow(c, lo, hi, i, s) {
+            // Its roots, if any, lie in the open (a, b): the part (a, b] of the range.
+            let (l, h) = (a.max(lo), b.min(hi));
+            if l < h {
+                s.undecided.push((l, h));
             }
         }
-        // One simple real root in (a, b), and no other real root there: certified signs.
-        let s_a = certified_sign(c, a, 0.0);
-        let s_b = certified_sign(c, b, 0.0);
-        if s_a == 0 || s_b != -s_a {
-            return false;
-        }
-        let (l, s_l) = if a < lo {
-            (lo, certified_sign(c, lo, 0.0))
-        } else {
-            (a, s_a)
-        };
-        let (h, s_h) = if b > hi {
-            (hi, certified_sign(c, hi, 0.0))
-        } else {
-            (b, s_b)
-        };
-        if s_l == 0 || s_h == 0 {
-            return false;
-        }
-        if s_l == -s_h {
-            s.brackets.push(Bracket::new(l, h, s_l));
-        }
-        // Equal signs: the root is in (a, lo) or (hi, b), outside the range.
     }
     s.brackets.sort_unstable_by(|x, y| x.lo.total_cmp(&y.lo));
+    s.undecided.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
+    // Merge overlapping or touching parts, in place.
+    let mut k = 0;
+    for j in 0..s.undecided.len() {
+        let (l, h) = s.undecided[j];
+        if k > 0 && l <= s.undecided[k - 1].1 {
+            s.undecided[k - 1].1 = s.undecided[k - 1].1.max(h);
+        } else {
+            s.undecided[k] = (l, h);
+            k += 1;
+        }
+    }
+    s.undecided.truncate(k);
+}
+
+/// Whether the disc `i`, whose shadow `(a, b)` meets `[lo, hi]`, decides its part of the
+/// range: a real centre, a disc and shadow apart from every other, certified opposite signs
+/// at `a` and `b` (exactly one simple root in `(a, b)`, and no other real root there). Its
+/// bracket, cut to the range with the certified sign at a cut end, goes to `s.brackets`
+/// when the root is in `(lo, hi]`; equal signs at the cut put the root outside the range.
+fn decide_shadow(c: &[f64], lo: f64, hi: f64, i: usize, s: &mut Scratch) -> bool {
+    let (a, b) = s.shadow[i];
+    let (z, r) = (s.z[i], s.radius[i]);
+    if z.im != 0.0 {
+        return false;
+    }
+    for j in 0..s.z.len() {
+        if j == i {
+            continue;
+        }
+        let (sa, sb) = s.shadow[j];
+        let shadows_apart = sa.is_nan() || sb < a || sa > b;
+        if !(shadows_apart && discs_apart(z, r, s.z[j], s.radius[j])) {
+            return false;
+        }
+    }
+    let s_a = certified_sign(c, a, 0.0);
+    let s_b = certified_sign(c, b, 0.0);
+    if s_a == 0 || s_b != -s_a {
+        return false;
+    }
+    let (l, s_l) = if a < lo {
+        (lo, certified_sign(c, lo, 0.0))
+    } else {
+        (a, s_a)
+    };
+    let (h, s_h) = if b > hi {
+        (hi, certified_sign(c, hi, 0.0))
+    } else {
+        (b, s_b)
+    };
+    if s_l == 0 || s_h == 0 {
+        return false;
+    }
+    if s_l == -s_h {
+        s.brackets.push(Bracket::new(l, h, s_l));
+    }
     true
 }
 
@@ -706,7 +858,38 @@ mod tests {
                 (0, 1),
                 "undecided, answered by subdivision: {stats:?}"
             );
+            // The discs of −1, 2 and 3 decide those roots; only the shadows of the pair
+            // go to subdivision, as one part.
+            assert_eq!(
+                stats.inclusion_subranges, 1,
+                "one undecided part: {stats:?}"
+            );
         }
+    }
+
+    #[test]
+    fn query_ends_inside_an_undecided_part_keep_the_half_open_range() {
+        // A double root at 0.25 (its discs overlap: an undecided part around it) and simple
+        // roots the discs decide; the ranges end at, just below and just above 0.25.
+        let p = Poly::from_roots(&[0.25, 0.25, -1.0, 2.0, 3.0, 5.0]);
+        for (lo, hi) in [
+            (-10.0, 0.25),
+            (0.25, 10.0),
+            (0.25f64.next_down(), 0.25f64.next_up()),
+            (-0.5, 0.25f64.next_down()),
+            (0.25f64.next_up(), 2.5),
+        ] {
+            let stats = check(&p, lo, hi);
+            assert!(
+                stats.inclusion_subranges <= 1 && stats.exact_fallbacks <= 1,
+                "({lo}, {hi}]: {stats:?}"
+            );
+        }
+        let stats = check(&p, -10.0, 10.0);
+        assert_eq!(
+            stats.inclusion_subranges, 1,
+            "one undecided part: {stats:?}"
+        );
     }
 
     #[test]
@@ -745,11 +928,11 @@ mod tests {
             check(&p, -b, b);
         }
         assert!(
-            !real_brackets(&[1.0, 2.0, 0.0], -1.0, 1.0, |_| {}),
+            !real_pieces(&[1.0, 2.0, 0.0], -1.0, 1.0, |_| {}),
             "a zero leading coefficient is refused"
         );
         assert!(
-            !real_brackets(&[1.0, f64::NAN, 1.0], -1.0, 1.0, |_| {}),
+            !real_pieces(&[1.0, f64::NAN, 1.0], -1.0, 1.0, |_| {}),
             "NaN is refused"
         );
     }

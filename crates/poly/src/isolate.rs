@@ -19,7 +19,7 @@ use crate::certified::{CertifiedSearch, Found, end_signs};
 use crate::closed_form::{linear_smallest, quadratic_smallest};
 use crate::eval_bound::certified_sign;
 use crate::exact_oracle::{ExactOracle, SquareFreeSign};
-use crate::inclusion::{INCLUSION_MIN_DEGREE, real_brackets};
+use crate::inclusion::{INCLUSION_MIN_DEGREE, Piece, real_pieces};
 use crate::multiprec::refine_wide;
 use crate::query::{Slack, with_scratch_poly};
 use crate::refine::{Refined, bisect_rational_to_f64, half_tol, refine_bracket, refine_exact_f64};
@@ -449,10 +449,24 @@ impl Poly<f64> {
             Slack::NONE,
             stats,
             |_, b, _| RootInterval { lo: b.lo, hi: b.hi },
+            |lo, hi, s, out| self.isolate_roots_subdivide(lo, hi, opts, s, out),
             out,
         )? {
             return Ok(());
         }
+        self.isolate_roots_subdivide(a, b, opts, stats, out)
+    }
+
+    /// The isolating intervals of the roots in `(a, b]` by subdivision (the certified
+    /// search, or the method `opts` names), appended to `out`.
+    fn isolate_roots_subdivide(
+        &self,
+        a: f64,
+        b: f64,
+        opts: &RootOptions,
+        stats: &mut RootStats,
+        out: &mut Vec<RootInterval<f64>>,
+    ) -> Result<(), RootError> {
         match self.isolate_inner(a, b, opts, Slack::NONE, stats)? {
             Isolation::Certified(search) => {
                 out.extend(search.found.iter().map(|f| match f {
@@ -589,9 +603,26 @@ impl Poly<f64> {
         let refine = |p: &Poly<f64>, b, s: &mut RootStats| {
             refine_certified(p, b, opts.tolerance(), opts.refine, s)
         };
-        if inclusion_first(self, a, b, opts, slack, stats, refine, out)? {
+        let subdivide = |lo, hi, s: &mut RootStats, out: &mut Vec<f64>| {
+            self.real_roots_subdivide(lo, hi, opts, slack, s, out)
+        };
+        if inclusion_first(self, a, b, opts, slack, stats, refine, subdivide, out)? {
             return Ok(());
         }
+        self.real_roots_subdivide(a, b, opts, slack, stats, out)
+    }
+
+    /// The roots in `(a, b]` by subdivision (the certified search, or the method `opts`
+    /// names), refined and appended to `out`.
+    fn real_roots_subdivide(
+        &self,
+        a: f64,
+        b: f64,
+        opts: &RootOptions,
+        slack: Slack<'_>,
+        stats: &mut RootStats,
+        out: &mut Vec<f64>,
+    ) -> Result<(), RootError> {
         match self.isolate_inner(a, b, opts, slack, stats)? {
             Isolation::Certified(search) => {
                 if let Some((lo, hi)) = search.slack_limited {
@@ -674,10 +705,12 @@ impl Poly<f64> {
 
 /// The all-roots queries' first try (issue 11): inclusion discs around simultaneous
 /// approximations of every root (`inclusion.rs`), for the default certified method without
-/// a value slack from degree [`INCLUSION_MIN_DEGREE`] on. `Ok(true)` when they decided every
-/// root of `(a, b]`: each bracket went through `emit` into `out`, in order. `Ok(false)`
-/// leaves `out` alone and the caller answers by subdivision; both outcomes are counted
-/// ([`RootStats::inclusion_decided`], [`RootStats::inclusion_undecided`]).
+/// a value slack from degree [`INCLUSION_MIN_DEGREE`] on. `Ok(true)` when they answered the
+/// query: each root an isolated disc decided went through `emit` into `out`, and each part
+/// of the range they left undecided through `subdivide` (on that part alone), all in order.
+/// `Ok(false)` leaves `out` alone and the caller answers by subdivision. Counted in
+/// [`RootStats::inclusion_decided`] (no part left), [`RootStats::inclusion_undecided`]
+/// (some or all of the range subdivided) and [`RootStats::inclusion_subranges`].
 #[allow(
     clippy::too_many_arguments,
     reason = "the query's parts, passed through"
@@ -690,6 +723,7 @@ fn inclusion_first<V>(
     slack: Slack<'_>,
     stats: &mut RootStats,
     mut emit: impl FnMut(&Poly<f64>, Bracket, &mut RootStats) -> V,
+    mut subdivide: impl FnMut(f64, f64, &mut RootStats, &mut Vec<V>) -> Result<(), RootError>,
     out: &mut Vec<V>,
 ) -> Result<bool, RootError> {
     if opts.isolation != IsolationMethod::Bernstein
@@ -701,13 +735,31 @@ fn inclusion_first<V>(
     let Range::Search { lo, hi } = prepare(p, a, b, opts)? else {
         return Ok(false);
     };
-    let decided = real_brackets(p.coeffs(), lo, hi, |br| out.push(emit(p, br, stats)));
-    if decided {
+    // One query for the statistics: at most one exact fallback, though several parts may
+    // have needed one (as around an exact root 0).
+    let fallbacks = stats.exact_fallbacks;
+    let (mut parts, mut failed) = (0u64, Ok(()));
+    let answered = real_pieces(p.coeffs(), lo, hi, |piece| {
+        if failed.is_err() {
+            return;
+        }
+        match piece {
+            Piece::Root(br) => out.push(emit(p, br, stats)),
+            Piece::Undecided(l, h) => {
+                parts += 1;
+                failed = subdivide(l, h, stats, out);
+            }
+        }
+    });
+    failed?;
+    stats.exact_fallbacks = stats.exact_fallbacks.min(fallbacks + 1);
+    stats.inclusion_subranges += parts;
+    if answered && parts == 0 {
         stats.inclusion_decided += 1;
     } else {
         stats.inclusion_undecided += 1;
     }
-    Ok(decided)
+    Ok(answered)
 }
 
 /// The isolation result, before conversion or refinement.

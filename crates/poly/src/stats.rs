@@ -74,10 +74,16 @@ pub struct RootStats {
     /// inclusion discs decided (`inclusion.rs`; `paper-notes/isolation.md`, "Inclusion
     /// discs"), without any subdivision.
     pub inclusion_decided: u64,
-    /// All-roots queries (or pieces) that tried the inclusion discs, were left undecided
-    /// (overlapping discs, a non-real disc meeting the range, an uncertain sign, no
-    /// convergence) and were answered by subdivision.
+    /// All-roots queries (or pieces) that tried the inclusion discs and were left undecided
+    /// in some part of the range (overlapping discs, a non-real disc meeting the range, an
+    /// uncertain sign) or in all of it (no convergence, overflow): those parts were answered
+    /// by subdivision.
     pub inclusion_undecided: u64,
+    /// Parts of a query range that the inclusion discs left undecided and that subdivision
+    /// answered on that part alone (the union of the shadows of the discs that decided
+    /// nothing; `paper-notes/isolation.md`, "Undecided parts"). A query the discs could not
+    /// narrow at all is subdivided whole and counts none here.
+    pub inclusion_subranges: u64,
 }
 
 impl RootStats {
@@ -102,6 +108,7 @@ impl RootStats {
         self.refine_evals += other.refine_evals;
         self.inclusion_decided += other.inclusion_decided;
         self.inclusion_undecided += other.inclusion_undecided;
+        self.inclusion_subranges += other.inclusion_subranges;
     }
 
     /// Fraction of queries that fell back to exact isolation (0 when there were no queries).
@@ -166,6 +173,7 @@ mod tests {
         a.inclusion_decided = 5;
         a.inclusion_undecided = 6;
         a.shifted_pieces = 2;
+        a.inclusion_subranges = 8;
         let mut b = a.clone();
         b.subdivisions = 7;
         b.refine_evals = 3;
@@ -193,8 +201,12 @@ mod tests {
         );
         assert_eq!(b.shifted_pieces, 4, "shifted pieces summed");
         assert_eq!(
-            (b.inclusion_decided, b.inclusion_undecided),
-            (10, 12),
+            (
+                b.inclusion_decided,
+                b.inclusion_undecided,
+                b.inclusion_subranges
+            ),
+            (10, 12, 16),
             "inclusion counters summed"
         );
         assert_eq!(b.fallback_rate(), 0.5, "2 of 4");
