@@ -220,7 +220,9 @@ fn sum_up(a: f64, b: f64) -> f64 {
 
 /// The lower of the two adjacent `f64` numbers whose certified signs on the stored `c` change
 /// from `s_lo` to `−s_lo`, found by stepping from `r` (within [`PIN_STEPS`] spacings of the
-/// root); `None` when a sign cannot be certified or no change is met.
+/// root); `None` when a sign cannot be certified or no change is met. (Were another root of
+/// the stored polynomial within those few spacings, the change found could be its: the
+/// answer is then within a few spacings of the bracketed root.)
 fn pin(c: &[f64], r: f64, s_lo: i8) -> Option<f64> {
     let sign = |x: f64| point_sign(c, x, Tier::Dd).0;
     let s = sign(r);
