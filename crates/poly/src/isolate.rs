@@ -985,7 +985,7 @@ fn refine_found(
     let bracket = match found {
         Found::Shifted(i, b) => {
             let shift = &search.shifts[*i as usize];
-            return Ok(shift.refine(p.coeffs(), b, opts.tolerance(), opts.refine, stats));
+            return Ok(shift.refine(p, b, opts.tolerance(), opts.refine, stats));
         }
         Found::Bracket(b) => Some(*b),
         Found::Exact(iv) if !iv.is_point() => {

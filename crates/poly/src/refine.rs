@@ -376,9 +376,16 @@ fn horner_with_derivative(c: &[f64], x: f64) -> (f64, f64) {
 /// of the root when that is below it. Precondition as for [`refine_bracket`]. Cost: one exact
 /// evaluation per bit gained.
 pub(crate) fn refine_exact_f64(p: &Poly<f64>, b: Bracket, tol: Tolerance) -> f64 {
+    refine_exact_offset(p, 0.0, b, tol)
+}
+
+/// [`refine_exact_f64`] on the bracket `(at + b.lo, at + b.hi)`, whose ends are taken exactly
+/// (a bracket in the variable `u = t − at` of a re-expanded piece, `shifted.rs`).
+pub(crate) fn refine_exact_offset(p: &Poly<f64>, at: f64, b: Bracket, tol: Tolerance) -> f64 {
     let q = IntPoly::from_qpoly(&p.to_rat().expect("finite coefficients were checked"));
-    let lo = rat_from_f64(b.lo).expect("finite");
-    let hi = rat_from_f64(b.hi).expect("finite");
+    let at = rat_from_f64(at).expect("finite");
+    let lo = &at + rat_from_f64(b.lo).expect("finite");
+    let hi = &at + rat_from_f64(b.hi).expect("finite");
     bisect_rational_to_f64(|x| q.sign_at(x), lo, hi, -b.s_lo, tol)
 }
 

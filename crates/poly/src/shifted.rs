@@ -21,12 +21,10 @@ use smallvec::SmallVec;
 
 use crate::bernstein::Bracket;
 use crate::double_double::{DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, taylor_shift_into, two_sum};
-use crate::int_poly::IntPoly;
 use crate::multiprec::{Tier, point_sign, refine_wide};
-use crate::refine::{Refined, bisect_rational_to_f64, refine_bracket};
+use crate::refine::{Refined, refine_bracket, refine_exact_offset};
 use crate::root_interval::RootInterval;
 use crate::root_options::{RefineMethod, Tolerance};
-use crate::scalar::rat_from_f64;
 use crate::stats::RootStats;
 use crate::univariate::Poly;
 
@@ -135,7 +133,7 @@ impl Shift {
         }
     }
 
-    /// Refines the root of the stored polynomial `c` in the shifted bracket `b` (certified
+    /// Refines the root of the stored polynomial `p` in the shifted bracket `b` (certified
     /// against [`slack`](Self::slack)) to the tolerance `tol` in `t`.
     ///
     /// # Accuracy
@@ -152,12 +150,13 @@ impl Shift {
     /// [`RootStats::refine_fallbacks`]).
     pub(crate) fn refine(
         &self,
-        c: &[f64],
+        p: &Poly<f64>,
         b: &Bracket,
         tol: Tolerance,
         method: RefineMethod,
         stats: &mut RootStats,
     ) -> f64 {
+        let c = p.coeffs();
         let iv = self.interval(b);
         let x_tol = tol.on(iv.lo, iv.hi);
         let slack = self.slack(b.lo.abs().max(b.hi.abs()));
@@ -189,20 +188,7 @@ impl Shift {
             return r;
         }
         stats.refine_fallbacks += 1;
-        self.refine_exact(c, &stuck, tol)
-    }
-
-    /// Exact bisection of the stored polynomial on the exact ends `e + u` of a shifted
-    /// bracket.
-    fn refine_exact(&self, c: &[f64], b: &Bracket, tol: Tolerance) -> f64 {
-        let p = Poly::new(c.to_vec())
-            .to_rat()
-            .expect("finite coefficients were checked");
-        let q = IntPoly::from_qpoly(&p);
-        let at = rat_from_f64(self.at).expect("finite");
-        let lo = &at + rat_from_f64(b.lo).expect("finite");
-        let hi = &at + rat_from_f64(b.hi).expect("finite");
-        bisect_rational_to_f64(|x| q.sign_at(x), lo, hi, -b.s_lo, tol)
+        refine_exact_offset(p, self.at, stuck, tol)
     }
 }
 
@@ -254,7 +240,7 @@ fn pin(c: &[f64], r: f64, s_lo: i8) -> Option<f64> {
 mod tests {
     use super::*;
     use crate::root_options::RootOptions;
-    use crate::scalar::rat_to_f64;
+    use crate::scalar::{rat_from_f64, rat_to_f64};
     use crate::testutil::{planted_f64, stored_roots};
 
     /// The exact coefficients of `p(e + u)` for the stored `c`.
