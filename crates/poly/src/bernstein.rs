@@ -93,7 +93,7 @@ impl Coeffs for Vec<f64> {
 
 /// Deepest subdivision tried before giving up on `f64`: intervals of relative width 2^-52
 /// are a single rounding step of the map `a + w·u`, so no sign below that can be certified.
-const MAX_DEPTH: u32 = 52;
+const MAX_DEPTH: u16 = 52;
 
 /// Most subdivisions tried in one query, over all its runs, before giving up on `f64` (a
 /// polynomial with many clustered roots is cheaper to isolate exactly than to subdivide for
@@ -107,10 +107,13 @@ struct Node<S> {
     v: S,
     u0: f64,
     u1: f64,
-    /// Number of cuts (subdivisions or clips) from the top node.
-    depth: u32,
+    /// Number of cuts (halvings or jumps) from the top node.
+    depth: u16,
     /// Rounding steps along any path from the stored coefficients to these.
     ops: u32,
+    /// `log₂ N` of the node's jump ratio: a cluster jump ([`BernsteinIsolator::jump_cut`])
+    /// keeps `1/N` of the node's width as a margin before the predicted cluster.
+    jump: u8,
 }
 
 /// A bracket `(lo, hi)` holding exactly one distinct real root, of odd multiplicity, with
@@ -287,6 +290,7 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
                 u1: 1.0,
                 depth: 0,
                 ops: base_ops,
+                jump: MIN_JUMP,
             },
         })
     }
@@ -302,8 +306,8 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
 
     /// The absolute underflow allowance of a node at this depth (each cut adds at most two
     /// roundings per level, none of which amplifies an earlier error).
-    fn tiny(&self, depth: u32) -> f64 {
-        self.underflow_unit * f64::from(4 + 2 * depth)
+    fn tiny(&self, depth: u16) -> f64 {
+        self.underflow_unit * f64::from(4 + 2 * u32::from(depth))
     }
 
     /// The error bound shared by every coefficient of `node`: `γ(k)·M + tiny`.
@@ -329,7 +333,7 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
                 // so no descendant can be decided in this run.
                 Class::Hopeless
             } else {
-                Class::Split
+                Class::Split { changes: 0, err }
             }
         };
         let first = if node.u0 == 0.0 { self.s_min } else { sign(0) };
@@ -355,32 +359,51 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         match changes {
             0 => Class::Empty,
             1 => Class::One,
-            _ => Class::Split,
+            changes => Class::Split { changes, err },
         }
     }
 
-    /// Halves a node with de Casteljau's algorithm at `u = 1/2`: returns (left, right).
+    /// Cuts a node with de Casteljau's algorithm at `λ` of its width (`λ = 1/2`: halving;
+    /// else a jump, whose `u` is exact, [`Self::jump_cut`]): returns (left, right).
     #[allow(
         clippy::needless_range_loop,
         reason = "two arrays indexed together; with exact-size storage the range form unrolls"
     )]
-    fn split(&self, node: Node<S>) -> (Node<S>, Node<S>) {
+    fn split(&self, node: Node<S>, cut: Cut) -> (Node<S>, Node<S>) {
         let n = self.n();
         let mut lvs = node.v.clone();
         let mut rvs = node.v;
-        {
-            let (lv, rv) = (lvs.at_mut(), rvs.at_mut());
-            for r in 1..=n {
-                for i in 0..=(n - r) {
-                    rv[i] = (rv[i] + rv[i + 1]) * 0.5;
+        let (lv, rv) = (lvs.at_mut(), rvs.at_mut());
+        // Halving: one rounded addition per level (the halving is exact). A jump at `λ`:
+        // `(1 − λ)·x + λ·y`, with `1 − λ` exact (`λ` has few bits), is two products and a
+        // sum, three roundings per level; its weights are convex, so the magnitude bound `M`
+        // still bounds every absolute-value weight (module docs), and each product adds at
+        // most one underflow unit, as a halving's does.
+        let (mid, per_level, (left_jump, right_jump)) = match cut {
+            Cut::Half => {
+                for r in 1..=n {
+                    for i in 0..=(n - r) {
+                        rv[i] = (rv[i] + rv[i + 1]) * 0.5;
+                    }
+                    lv[r] = rv[0];
                 }
-                lv[r] = rv[0];
+                let jump = (node.jump / 2).max(MIN_JUMP);
+                (0.5 * (node.u0 + node.u1), 1, (jump, jump))
             }
-        }
-        let mid = 0.5 * (node.u0 + node.u1);
+            Cut::Unresolvable => unreachable!("an unresolvable node is not split"),
+            Cut::Jump { lambda, u, jump } => {
+                let mu = 1.0 - lambda;
+                for r in 1..=n {
+                    for i in 0..=(n - r) {
+                        rv[i] = mu * rv[i] + lambda * rv[i + 1];
+                    }
+                    lv[r] = rv[0];
+                }
+                (u, 3, (MIN_JUMP, (2 * jump).min(MAX_JUMP)))
+            }
+        };
         let depth = node.depth + 1;
-        // One rounded addition per de Casteljau level; the halving is exact.
-        let ops = node.ops + n as u32;
+        let ops = node.ops + per_level * n as u32;
         (
             Node {
                 v: lvs,
@@ -388,6 +411,7 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
                 u1: mid,
                 depth,
                 ops,
+                jump: left_jump,
             },
             Node {
                 v: rvs,
@@ -395,8 +419,89 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
                 u1: node.u1,
                 depth,
                 ops,
+                jump: right_jump,
             },
         )
+    }
+
+    /// Where to cut a node whose roots may cluster in its right part: a jump towards the
+    /// cluster in the manner of ANewDsc's Newton steps (Sagraloff–Mehlhorn 2016), in the
+    /// Bernstein basis; else halving; or not at all (`Unresolvable`, see below).
+    ///
+    /// The estimate is Laguerre's step from the node's left end, `s*`, from `q(0) = b₀`,
+    /// `q'(0) = n(b₁ − b₀)`, `q''(0) = n(n − 1)(b₂ − 2b₁ + b₀)`: exact for `(s − r)ⁿ`, and
+    /// for a polynomial with real roots never past the first one. The cut is `λ ≤ s* − 1/N`
+    /// on the grid of `1/(4N)`, so the left part is usually empty (one classification) and
+    /// the right part holds the cluster in `1/N + (1 − s*)` of the width. `N` squares after
+    /// each jump and falls back to `√N` after each halving ([`Node::jump`]): a search
+    /// converging on a cluster jumps quadratically. Jumps are tried only when every sign
+    /// change may belong to one cluster (`n` of them, or some sign undecided) and past the
+    /// middle; `N` is lowered until the cluster model `q(s) ≈ b₀(1 − s/s*)ⁿ` keeps the cut's
+    /// coefficients [`JUMP_CLEARANCE`] above the error bound `err` (else the left part would
+    /// be undecided too). The cut's `u` must be exact in `f64`, so the node ends stay the
+    /// exact interval of the coefficients. A wrong guess only cuts the node off-centre: both
+    /// parts are searched as always.
+    ///
+    /// `Unresolvable`: some sign is undecided and, by the same model, `|q|` is below
+    /// `JUMP_CLEARANCE·err` already halfway to the cluster, so the halvings left would only
+    /// narrow the stuck node by the few widths `f64` can still tell apart; the run stops
+    /// there, as it does on a hopeless node, and the search's next tier takes the piece.
+    /// Not with a value slack: those runs have no higher tier, only narrower runs.
+    fn jump_cut(&self, node: &Node<S>, changes: u32, err: f64) -> Cut {
+        let n = self.n();
+        let b = node.v.at();
+        if n < 2 {
+            // No second derivative (an undecided linear node): halve.
+            return Cut::Half;
+        }
+        if changes != 0 && (changes as usize != n || (b[0] + b[1]) * b[0] <= 0.0) {
+            // Fewer sign changes than the degree: not one cluster (on the renderer's entry
+            // rays such jumps mostly failed). Or the first leg of the control polygon crosses
+            // zero before the middle (the `n`-fold Newton step, not below Laguerre's for real
+            // roots): halve, without the divisions below.
+            return Cut::Half;
+        }
+        let nf = n as f64;
+        // Laguerre's step from s = 0 on q(s) = Σ bᵢ·Bᵢ(s): q(0) = b₀, q'(0) = n(b₁ − b₀),
+        // q''(0) = n(n − 1)(b₂ − 2b₁ + b₀).
+        let g = nf * (b[1] - b[0]) / b[0];
+        let h = g * g - nf * (nf - 1.0) * (b[2] - 2.0 * b[1] + b[0]) / b[0];
+        let root = ((nf - 1.0) * (nf * h - g * g)).max(0.0).sqrt();
+        let s = (-nf / (g - root)).min(1.0);
+        let need = JUMP_CLEARANCE * err / b[0].abs();
+        if changes == 0 && self.slack == 0.0 && s > 0.0 && 0.5f64.powi(n as i32) < need {
+            return Cut::Unresolvable;
+        }
+        // (A NaN `s`, from a zero denominator, halves too.)
+        if s.is_nan() || s <= 0.5 {
+            return Cut::Half;
+        }
+        // The left part is decided only where |q| clears the error bound: under the cluster
+        // model q(s) ≈ b₀(1 − s/s*)ⁿ, at a cut λ that needs |b₀|(1 − λ/s*)ⁿ ≥ c·err. N
+        // shrinks (by 4) until it does, or the cut would fall before the middle.
+        let mut jump = node.jump;
+        let lambda = loop {
+            let grid = f64::from(1u32 << (jump + 2));
+            let lambda = ((s * grid).floor() - 4.0) / grid;
+            if lambda <= 0.5 {
+                return Cut::Half;
+            }
+            if (1.0 - lambda / s).powi(n as i32) >= need {
+                break lambda;
+            }
+            if jump < MIN_JUMP + 2 {
+                return Cut::Half;
+            }
+            jump -= 2;
+        };
+        let (h, h_exact) = diff_rounded_up(node.u1, node.u0);
+        let du = lambda * h;
+        let u = node.u0 + du;
+        if h_exact && lambda.mul_add(h, -du) == 0.0 && sum_is_exact(node.u0, du, u) && u < node.u1 {
+            Cut::Jump { lambda, u, jump }
+        } else {
+            Cut::Half
+        }
     }
 
     /// Certified bracket in `t` for a node holding exactly one root, or `Err(())` when the
@@ -499,6 +604,7 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
     fn expand(
         &self,
         node: Node<S>,
+        (changes, err): (u32, f64),
         stack: &mut SmallVec<[Node<S>; 8]>,
         splits: &mut u32,
         stats: &mut RootStats,
@@ -511,7 +617,11 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         if 0.5 * (node.u0 + node.u1) <= node.u0 {
             return Err(node);
         }
-        let (l, r) = self.split(node);
+        let cut = self.jump_cut(&node, changes, err);
+        if cut == Cut::Unresolvable {
+            return Err(node);
+        }
+        let (l, r) = self.split(node, cut);
         stack.push(r);
         stack.push(l);
         Ok(())
@@ -524,6 +634,7 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
             u1: 1.0,
             depth: 0,
             ops: 0,
+            jump: MIN_JUMP,
         };
         std::mem::replace(&mut self.top, empty)
     }
@@ -557,8 +668,9 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
                     Ok(None) => return Ok(()),
                     Err(()) => return Err(self.stuck(&node, out)),
                 },
-                Class::Split => {
-                    if let Err(node) = self.expand(node, &mut stack, splits, stats) {
+                Class::Split { changes, err } => {
+                    if let Err(node) = self.expand(node, (changes, err), &mut stack, splits, stats)
+                    {
                         return Err(self.stuck(&node, out));
                     }
                 }
@@ -688,11 +800,38 @@ pub(crate) fn run(
     }
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// How [`BernsteinIsolator::split`] cuts a node.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Cut {
+    /// At the middle.
+    Half,
+    /// At `λ` of the node's width, `u = u0 + λ·(u1 − u0)` exactly.
+    Jump { lambda: f64, u: f64, jump: u8 },
+    /// Not at all: the node is stuck.
+    Unresolvable,
+}
+
+/// Smallest `log₂ N` of a cluster jump (`N = 4`, as in ANewDsc).
+const MIN_JUMP: u8 = 2;
+
+/// How far above the error bound a jump keeps the polynomial at its cut (under the cluster
+/// model of [`BernsteinIsolator::jump_cut`]): a cut where the left part's coefficients would
+/// be undecided would only move the stuck node.
+const JUMP_CLEARANCE: f64 = 4.0;
+
+/// Largest `log₂ N`: the cut's grid, `1/(4N)`, stays within the bits a node's `u` can spare.
+const MAX_JUMP: u8 = 24;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
 enum Class {
     Empty,
     One,
-    Split,
+    /// Two or more sign changes (their number), or some sign undecided (0); `err` is the
+    /// node's error bound.
+    Split {
+        changes: u32,
+        err: f64,
+    },
     /// Every coefficient is within its error bound: no descendant can be decided.
     Hopeless,
 }
@@ -700,6 +839,12 @@ enum Class {
 /// `t = a + w·u` rounded once (fused multiply-add), so within half an ulp of the exact value.
 fn w_u_a(w: f64, u: f64, a: f64) -> f64 {
     w.mul_add(u, a)
+}
+
+/// Whether `a + b` was computed exactly as `s = fl(a + b)` (Knuth's TwoSum error is 0).
+fn sum_is_exact(a: f64, b: f64, s: f64) -> bool {
+    let bb = s - a;
+    (a - (s - bb)) + (b - bb) == 0.0
 }
 
 /// `hi − lo` rounded up, and whether the subtraction was exact (Knuth's TwoSum gives the
@@ -833,13 +978,35 @@ mod tests {
             Rat::from_float(iso.a).unwrap(),
             Rat::from_float(iso.w).unwrap(),
         );
-        // The top node, and the nodes reached by halving left, right, left.
+        // The top node, the nodes reached by halving left, right, left, and those reached by
+        // jumps (three roundings per level instead of one) at 11/16, then 59/64 of the right
+        // part, then halving, left of a jump.
         let mut nodes = vec![iso.top.clone()];
-        let mut node = iso.top.clone();
-        for go_left in [true, false, true] {
-            let (l, r) = iso.split(node);
-            node = if go_left { l } else { r };
-            nodes.push(node.clone());
+        for path in [
+            [(true, 0.5), (false, 0.5), (true, 0.5)],
+            [(false, 0.6875), (false, 0.921875), (true, 0.5)],
+            [(false, 0.6875), (true, 0.921875), (false, 0.5)],
+        ] {
+            let mut node = iso.top.clone();
+            for (go_left, lambda) in path {
+                let cut = if lambda == 0.5 {
+                    Cut::Half
+                } else {
+                    let u = node.u0 + lambda * (node.u1 - node.u0);
+                    assert!(
+                        sum_is_exact(node.u0, lambda * (node.u1 - node.u0), u),
+                        "the test's cut is exact"
+                    );
+                    Cut::Jump {
+                        lambda,
+                        u,
+                        jump: MIN_JUMP,
+                    }
+                };
+                let (l, r) = iso.split(node, cut);
+                node = if go_left { l } else { r };
+                nodes.push(node.clone());
+            }
         }
         for node in &nodes {
             let (u0, u1) = (
@@ -861,6 +1028,49 @@ mod tests {
             }
             // Not vacuous: far below the size of the coefficients.
             assert!(err < max_rel * iso.mag, "bound {err} vs M {}", iso.mag);
+        }
+    }
+
+    /// A cluster of four roots in the last `3·10⁻⁴` of `(0, 10⁴ + 3]` (a torus seen from
+    /// 10⁴ units, restricted at the eye): halving needs eleven levels to come near it, jumps
+    /// towards it (`jump_cut`) four. The brackets are those of the stored polynomial.
+    #[test]
+    fn far_cluster_is_reached_by_jumps() {
+        let p = crate::testutil::planted_f64(&[9998.7, 9999.1, 10000.3, 10001.2]);
+        let c = p.coeffs();
+        let (lo, hi) = (0.0, 1e4 + 3.0);
+        let run = |p: &[f64], lo: f64, hi: f64, stats: &mut RootStats| {
+            let mut out = Brackets::new();
+            let signs = (1, 1);
+            let result = run(p, (lo, hi), signs, 0.0, false, &mut out, &mut 0, stats);
+            (result, out)
+        };
+        let mut stats = RootStats::default();
+        let (result, out) = run(c, lo, hi, &mut stats);
+        // f64 cannot separate roots 0.4 apart at 10⁴ (the error bound is about
+        // (|t| + 10⁴)⁴·γ ≈ 10³ there): the run is stuck near the cluster.
+        let stuck = result.expect_err("stuck near the cluster");
+        assert!(out.is_empty(), "no root before the cluster: {out:?}");
+        assert!(
+            stuck.t_a > 9990.0 && stuck.t_a < 9998.7,
+            "everything up to near the cluster answered: {stuck:?}"
+        );
+        assert!(
+            stats.subdivisions <= 6,
+            "{} cuts (halving alone takes 11 to reach a node 10 wide)",
+            stats.subdivisions
+        );
+        // The same cluster moved near 0 is well conditioned: the jumps cut off-centre and
+        // every root is still bracketed, each bracket holding its exact root.
+        let near = crate::testutil::planted_f64(&[0.95, 0.96, 0.975, 0.99]);
+        let before = stats.subdivisions;
+        let (result, out) = run(near.coeffs(), 0.0, 1.0, &mut stats);
+        assert!(result.is_ok(), "decided in f64: {result:?}");
+        assert!(stats.subdivisions > before, "subdivided");
+        let exact = crate::testutil::stored_roots(&near, 0.0, 1.0);
+        assert_eq!(out.len(), exact.len(), "{out:?} vs {exact:?}");
+        for (b, r) in out.iter().zip(&exact) {
+            assert!(b.lo < *r && *r <= b.hi, "{b:?} holds {r}");
         }
     }
 

@@ -587,3 +587,30 @@ fn certified_missed_two_subnormal_valued_roots_on_a_range_ending_at_zero() {
     ]);
     check_against_oracle(&[(p, -1e-150, 0.0)]);
 }
+
+/// Found by `fuzz_coeffs` (seed 13, case 40) when nodes first jumped towards clusters
+/// (`bernstein.rs`, `jump_cut`): an undecided node of a *linear* polynomial reached the
+/// Laguerre step, which reads the second Bernstein coefficient `b₂`: index out of bounds.
+#[test]
+fn undecided_linear_node_is_halved_not_jumped() {
+    let p = Poly::new(vec![-4.0798953258000656e-106, 0.5017136996628846]);
+    let (lo, hi) = (-10.0, 10.0);
+    let want = oracle(&p, lo, hi);
+    assert_eq!(want.len(), 1, "one root near 8e-106");
+    for isolation in CERTIFIED {
+        let opts = RootOptions {
+            closed_form: false,
+            ..with(isolation, 1e-12)
+        };
+        let mut stats = RootStats::default();
+        let all = p.real_roots_with(lo, hi, &opts, &mut stats).unwrap();
+        assert_roots_match(&all, &want, 1e-12, &format!("{isolation:?} all"));
+        let first = p.try_smallest_root(lo, hi, &opts, &mut stats).unwrap();
+        assert_roots_match(
+            &first.into_iter().collect::<Vec<_>>(),
+            &want,
+            1e-12,
+            "first",
+        );
+    }
+}
