@@ -1315,6 +1315,9 @@ mod tests {
         let p = exact_product(&[0.5, 0.5, 0.25, -1.5]).expect("exact coefficients");
         let mut stats = RootStats::default();
         check_all(&p, -2.0, 2.0, 1e-12, &mut stats);
+        // The all-roots query is answered by the inclusion discs (the double root 0.5 is
+        // exact in f64, its cluster certifies it); the subdivision meets it alone.
+        assert_eq!(p.subdivision_root_count(-2.0, 2.0, &mut stats), 3);
         assert!(stats.adaptive_pieces > 0, "{stats:?}");
         assert!(
             stats.exact_fallbacks <= 2,
