@@ -838,11 +838,25 @@ fn multiple_root(c: &[f64], k: usize, s: &mut Scratch) -> Option<f64> {
         }
     }
     let r = derivative_root(c, m - 1, sum / m as f64, &mut s.shifted);
-    let p = IntPoly::from_qpoly(&Poly::new(c.to_vec()).to_rat()?);
+    // A candidate where p has a certified sign is no root: only the others are checked
+    // exactly (the integer polynomial is built for the first of them).
+    let mut exact: Option<IntPoly> = None;
     [r, r.next_down(), r.next_up()]
         .into_iter()
-        .filter(|&r| lo < r && r < hi)
-        .find(|&r| rat_from_f64(r).is_some_and(|x| p.has_root_of_multiplicity(&x, m)))
+        .filter(|&r| lo < r && r < hi && certified_sign(c, r, 0.0) == 0)
+        .find(|&r| {
+            let Some(x) = rat_from_f64(r) else {
+                return false;
+            };
+            let p = match &exact {
+                Some(p) => p,
+                None => match Poly::new(c.to_vec()).to_rat() {
+                    Some(q) => exact.insert(IntPoly::from_qpoly(&q)),
+                    None => return false,
+                },
+            };
+            p.has_root_of_multiplicity(&x, m)
+        })
 }
 
 /// A candidate for a root of multiplicity `k + 1` near `x`: Newton's iteration on the `k`-th

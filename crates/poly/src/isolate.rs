@@ -487,8 +487,14 @@ impl Poly<f64> {
     /// # Accuracy
     /// Certified: one value per distinct root of the stored polynomial in `(a, b]`, none
     /// missed, each within `x_tol` of its root (absolute; within one `f64` spacing when
-    /// `x_tol` is smaller). Multiplicities are not reported. Cost: isolation plus
-    /// `O(log(1/x_tol))` evaluations per root.
+    /// `x_tol` is smaller: no `f64` lies strictly between the value and its root).
+    /// Multiplicities are not reported. Cost: isolation plus `O(log(1/x_tol))` evaluations
+    /// per root. `x_tol = 0` (full `f64` accuracy) stays in `f64` and double-double for
+    /// simple roots and for roots that are exact `f64` numbers of any multiplicity (a
+    /// multiple one is certified by its cluster of inclusion discs and an exact divisibility
+    /// check, `paper-notes/isolation.md`, "Full precision"); a multiple root of the stored
+    /// polynomial that is not an `f64` number (`(3x − 1)²`) is still answered exactly, by
+    /// exact arithmetic on its piece alone ([`RootStats::exact_fallbacks`]).
     ///
     /// # Errors
     /// As [`try_smallest_root`](Poly::try_smallest_root).
