@@ -828,7 +828,7 @@ fn multiple_root(c: &[f64], k: usize, s: &mut Scratch) -> Option<f64> {
             }
         }
     }
-    if m < 2 || m * n > MAX_MULTIPLE_WORK || !(lo < hi) {
+    if m < 2 || m * n > MAX_MULTIPLE_WORK || lo >= hi {
         return None;
     }
     for j in 0..n {
@@ -871,7 +871,14 @@ fn derivative_root(c: &[f64], k: usize, mut x: f64, d: &mut Vec<f64>) -> f64 {
         (i - k + 1..=i).fold(ci, |v, f| v * f as f64)
     }));
     for _ in 0..MAX_POLISH_STEPS {
-        let (v, dv, _) = horner_derivative_and_bound(d, x, x);
+        // Value and derivative by plain Horner (a heuristic, no bound needed; calling
+        // `horner_derivative_and_bound` here changed its inlining into the Aberth sweeps:
+        // +1.3 % instructions on Kac 40).
+        let (mut v, mut dv) = (0.0, 0.0);
+        for &di in d.iter().rev() {
+            dv = dv * x + v;
+            v = v * x + di;
+        }
         let next = x - v / dv;
         if !next.is_finite() || next == x {
             break;
