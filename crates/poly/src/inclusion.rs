@@ -871,9 +871,9 @@ fn derivative_root(c: &[f64], k: usize, mut x: f64, d: &mut Vec<f64>) -> f64 {
         (i - k + 1..=i).fold(ci, |v, f| v * f as f64)
     }));
     for _ in 0..MAX_POLISH_STEPS {
-        // Value and derivative by plain Horner (a heuristic, no bound needed; calling
-        // `horner_derivative_and_bound` here changed its inlining into the Aberth sweeps:
-        // +1.3 % instructions on Kac 40).
+        // Value and derivative by plain Horner (a heuristic, no bound needed; a call of
+        // `horner_derivative_and_bound` here changed how it is inlined into the Aberth
+        // sweeps and slowed them: `paper-notes/isolation.md`, "Full precision").
         let (mut v, mut dv) = (0.0, 0.0);
         for &di in d.iter().rev() {
             dv = dv * x + v;
