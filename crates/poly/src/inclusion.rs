@@ -25,6 +25,13 @@
 //!    Anything else (overlapping discs, a non-real disc touching the range, a sign that
 //!    cannot be certified) is *undecided*: those shadows, cut to the range and merged, are
 //!    the parts the caller answers by subdivision, each alone (`Piece::Undecided`).
+//! 4. *Exact multiple roots*: a cluster of `m` overlapping discs apart from all others holds
+//!    exactly `m` roots counted with multiplicity (the theorem of step 2); when the mean of
+//!    its centres, an `f64` `r`, is exactly a root of multiplicity `m` of the stored
+//!    polynomial (`(x − r)^m` divides it, checked in integers), those `m` roots are all `r`,
+//!    and `r` is the only real root in the cluster's shadow (`Piece::Multiple`). Descartes'
+//!    rule cannot isolate a multiple root at any precision; without this the subdivision
+//!    ended in exact Sturm isolation (issue 11: `(x − 1000)⁴`).
 
 use std::cell::Cell;
 
@@ -32,7 +39,9 @@ use crate::bernstein::Bracket;
 use crate::eval_bound::{
     certified_sign, comp_horner_bounded, horner_bounded, horner_derivative_and_bound,
 };
-use crate::univariate::{ETA, UNIT_ROUNDOFF};
+use crate::int_poly::IntPoly;
+use crate::scalar::rat_from_f64;
+use crate::univariate::{ETA, Poly, UNIT_ROUNDOFF};
 
 /// Lowest degree for which the all-roots queries try inclusion discs before subdivision.
 /// Why this value: measured on whole corpora only (callgrind, `paper-notes/isolation.md`,
@@ -74,6 +83,14 @@ const MAX_DEGREE: usize = 1024;
 /// relative rounding bounds used for them fail; such approximations are treated as not
 /// distinct (undecided).
 const MIN_DISTANCE: f64 = f64::from_bits((1023 - 900) << 52);
+
+/// Largest `m·n` (cluster size times degree) for which a cluster of `m` discs is checked
+/// for an exact root of multiplicity `m` ([`multiple_root`]): the check is `m` exact
+/// divisions of the degree-`n` integer polynomial, `m·n` big-integer products, and this
+/// keeps it to a few thousand (below the cost of one exact Sturm sequence, which the
+/// subdivision would otherwise build for a multiple root); larger clusters go to
+/// subdivision as before.
+const MAX_MULTIPLE_WORK: usize = 4096;
 
 /// Squared moduli `|z|²` for which the iteration's shortcuts (`√(re² + im²)`, `conj(z)/|z|²`)
 /// are used: `[2^-1000, 2^1000]`, far enough inside the normal range that neither square
@@ -175,6 +192,15 @@ struct Scratch {
     brackets: Vec<Bracket>,
     /// The undecided parts `(lo, hi]` of the range, sorted and disjoint.
     undecided: Vec<(f64, f64)>,
+    /// Exact multiple roots certified for clusters of discs ([`multiple_root`]).
+    multiple: Vec<f64>,
+    /// The answer, in order, before it is handed to the caller.
+    pieces: Vec<Piece>,
+    /// Union–find parents of the discs' clusters (components of discs not certainly apart).
+    parent: Vec<usize>,
+    /// Per cluster (indexed by its root in `parent`): not tried yet (`None`), or the exact
+    /// multiple root certified for it (`Some(Some(r))`) or not (`Some(None)`).
+    cluster: Vec<Option<Option<f64>>>,
     /// Indices of the Newton polygon's vertices.
     hull: Vec<usize>,
     /// The coefficients of `p(g + y)` for the starting points ([`starting_points`]).
@@ -195,6 +221,11 @@ impl Scratch {
         self.brackets.reserve(m.saturating_sub(self.brackets.len()));
         self.undecided
             .reserve(m.saturating_sub(self.undecided.len()));
+        self.multiple.reserve(m.saturating_sub(self.multiple.len()));
+        self.pieces
+            .reserve((3 * m).saturating_sub(self.pieces.len()));
+        self.parent.reserve(m.saturating_sub(self.parent.len()));
+        self.cluster.reserve(m.saturating_sub(self.cluster.len()));
         self.hull.reserve(m.saturating_sub(self.hull.len()));
         self.shifted.reserve(m.saturating_sub(self.shifted.len()));
     }
@@ -217,6 +248,20 @@ pub(crate) enum Piece {
     /// `(lo, hi]`: a part of the range where the discs decide nothing (a cluster, a
     /// non-real disc meeting the axis, an uncertain sign); its roots are for subdivision.
     Undecided(f64, f64),
+    /// Exactly one distinct root of the range in a cluster's shadow: this `f64` itself, an
+    /// exact root of the stored polynomial of multiplicity at least 2 ([`multiple_root`]).
+    Multiple(f64),
+}
+
+impl Piece {
+    /// Where the piece starts, for ordering.
+    fn start(&self) -> f64 {
+        match *self {
+            Piece::Root(b) => b.lo,
+            Piece::Undecided(l, _) => l,
+            Piece::Multiple(r) => r,
+        }
+    }
 }
 
 /// The real roots of `c` (coefficients lowest degree first) in `(lo, hi]` by inclusion
@@ -251,19 +296,17 @@ pub(crate) fn real_pieces(c: &[f64], lo: f64, hi: f64, mut emit: impl FnMut(Piec
     let decided = approximate(c, &mut s) && certify(c, &mut s);
     if decided {
         decide(c, lo, hi, &mut s);
-        // Both lists are sorted and disjoint: merge them in order.
-        let (mut i, mut j) = (0, 0);
-        while i < s.brackets.len() || j < s.undecided.len() {
-            let bracket_first = j == s.undecided.len()
-                || (i < s.brackets.len() && s.brackets[i].lo < s.undecided[j].0);
-            if bracket_first {
-                emit(Piece::Root(s.brackets[i]));
-                i += 1;
-            } else {
-                let (a, b) = s.undecided[j];
-                emit(Piece::Undecided(a, b));
-                j += 1;
-            }
+        // The three lists are disjoint from each other: emit them in order.
+        s.pieces.clear();
+        s.pieces.extend(s.brackets.iter().map(|&b| Piece::Root(b)));
+        s.pieces
+            .extend(s.undecided.iter().map(|&(a, b)| Piece::Undecided(a, b)));
+        s.pieces
+            .extend(s.multiple.iter().map(|&r| Piece::Multiple(r)));
+        s.pieces
+            .sort_unstable_by(|x, y| x.start().total_cmp(&y.start()));
+        for &piece in &s.pieces {
+            emit(piece);
         }
     }
     SCRATCH.set(s);
@@ -656,6 +699,8 @@ fn decide(c: &[f64], lo: f64, hi: f64, s: &mut Scratch) {
     s.shadow.clear();
     s.brackets.clear();
     s.undecided.clear();
+    s.multiple.clear();
+    let mut clusters = false;
     for i in 0..n {
         let (z, r) = (s.z[i], s.radius[i]);
         // The disc meets the axis only if |Im z| ≤ r (exact comparison of stored numbers);
@@ -672,7 +717,26 @@ fn decide(c: &[f64], lo: f64, hi: f64, s: &mut Scratch) {
         if a.is_nan() || b < lo || a > hi {
             continue;
         }
-        if !decide_shadow(c, lo, hi, i, s) {
+        if decide_shadow(c, lo, hi, i, s) {
+            continue;
+        }
+        if !clusters {
+            find_clusters(s);
+            clusters = true;
+        }
+        let k = cluster_of(&mut s.parent, i);
+        let multiple = match s.cluster[k] {
+            Some(known) => known,
+            None => {
+                let r = multiple_root(c, k, s);
+                s.cluster[k] = Some(r);
+                if let Some(r) = r.filter(|&r| lo < r && r <= hi) {
+                    s.multiple.push(r);
+                }
+                r
+            }
+        };
+        if multiple.is_none() {
             // Its roots, if any, lie in the open (a, b): the part (a, b] of the range.
             let (l, h) = (a.max(lo), b.min(hi));
             if l < h {
@@ -694,6 +758,134 @@ fn decide(c: &[f64], lo: f64, hi: f64, s: &mut Scratch) {
         }
     }
     s.undecided.truncate(k);
+}
+
+/// Whether discs `i` and `j` may share a root's neighbourhood: their discs or their shadows
+/// are not certainly apart (the relation [`decide_shadow`] requires of an isolated disc).
+fn touching(s: &Scratch, i: usize, j: usize) -> bool {
+    let (a, b) = s.shadow[i];
+    let (sa, sb) = s.shadow[j];
+    let shadows_apart = a.is_nan() || sa.is_nan() || sb < a || sa > b;
+    !(shadows_apart && discs_apart(s.z[i], s.radius[i], s.z[j], s.radius[j]))
+}
+
+/// The clusters: connected components of the discs under [`touching`], as union–find
+/// parents in `s.parent`; `s.cluster` reset (nothing tried). `O(n²)` pairs, run only when
+/// some disc meeting the range is undecided.
+fn find_clusters(s: &mut Scratch) {
+    let n = s.z.len();
+    s.parent.clear();
+    s.parent.extend(0..n);
+    s.cluster.clear();
+    s.cluster.resize(n, None);
+    for i in 0..n {
+        for j in i + 1..n {
+            if touching(s, i, j) {
+                let (ri, rj) = (cluster_of(&mut s.parent, i), cluster_of(&mut s.parent, j));
+                if ri != rj {
+                    s.parent[ri.max(rj)] = ri.min(rj);
+                }
+            }
+        }
+    }
+}
+
+/// The root of `i`'s cluster in the union–find `parent` (with path halving).
+fn cluster_of(parent: &mut [usize], mut i: usize) -> usize {
+    while parent[i] != i {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
+    }
+    i
+}
+
+/// The exact multiple root of cluster `k` (module docs, step 4), or `None`.
+///
+/// # Accuracy
+/// Certified: with `m ≥ 2` discs in the cluster and every other disc apart from each of
+/// them, the union of the cluster's discs holds exactly `m` roots counted with multiplicity
+/// (Bini & Fiorentino 2000, Theorem 9: it is a union of whole components). Every other
+/// disc's shadow is required to miss the hull `[A, B]` of the cluster's shadows. When
+/// `(x − r)^m` divides the stored polynomial exactly for an `f64` `r` in `(A, B)`, `r` lies
+/// in some disc (every root does), whose shadow holds `r`, so a disc of the cluster; its `m`
+/// roots are then `r` alone, and every real root in `[A, B]`, lying in the shadow of some
+/// disc, is `r`. The candidate `r` ([`derivative_root`]) and its two neighbouring `f64` are
+/// tried. Not certified (`None`): a multiple root that is not an `f64` (the
+/// stored polynomial `(3x − 1)²`), a cluster of distinct roots, `m·n >`
+/// [`MAX_MULTIPLE_WORK`].
+fn multiple_root(c: &[f64], k: usize, s: &mut Scratch) -> Option<f64> {
+    let n = s.z.len();
+    let (mut m, mut sum) = (0usize, 0.0f64);
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for i in 0..n {
+        if cluster_of(&mut s.parent, i) == k {
+            m += 1;
+            sum += s.z[i].re;
+            let (a, b) = s.shadow[i];
+            if !a.is_nan() {
+                lo = lo.min(a);
+                hi = hi.max(b);
+            }
+        }
+    }
+    if m < 2 || m * n > MAX_MULTIPLE_WORK || lo >= hi {
+        return None;
+    }
+    for j in 0..n {
+        let (a, b) = s.shadow[j];
+        if cluster_of(&mut s.parent, j) != k && !a.is_nan() && !(b < lo || a > hi) {
+            return None;
+        }
+    }
+    let r = derivative_root(c, m - 1, sum / m as f64, &mut s.shifted);
+    // A candidate where p has a certified sign is no root: only the others are checked
+    // exactly (the integer polynomial is built for the first of them).
+    let mut exact: Option<IntPoly> = None;
+    [r, r.next_down(), r.next_up()]
+        .into_iter()
+        .filter(|&r| lo < r && r < hi && certified_sign(c, r, 0.0) == 0)
+        .find(|&r| {
+            let Some(x) = rat_from_f64(r) else {
+                return false;
+            };
+            let p = match &exact {
+                Some(p) => p,
+                None => match Poly::new(c.to_vec()).to_rat() {
+                    Some(q) => exact.insert(IntPoly::from_qpoly(&q)),
+                    None => return false,
+                },
+            };
+            p.has_root_of_multiplicity(&x, m)
+        })
+}
+
+/// A candidate for a root of multiplicity `k + 1` near `x`: Newton's iteration on the `k`-th
+/// derivative, of which such a root is a simple root (its `f64` values are not lost in the
+/// noise that hides `p` itself near a multiple root: the approximations of the cluster at
+/// `(x − 1000)⁴` end up to `0.02` apart, so their mean is no candidate). A heuristic: the
+/// exact check decides. `d` is scratch for the derivative's coefficients.
+fn derivative_root(c: &[f64], k: usize, mut x: f64, d: &mut Vec<f64>) -> f64 {
+    d.clear();
+    d.extend(c.iter().enumerate().skip(k).map(|(i, &ci)| {
+        // cᵢ·i!/(i − k)!, the coefficient of x^(i−k) in the k-th derivative.
+        (i - k + 1..=i).fold(ci, |v, f| v * f as f64)
+    }));
+    for _ in 0..MAX_POLISH_STEPS {
+        // Value and derivative by plain Horner (a heuristic, no bound needed; a call of
+        // `horner_derivative_and_bound` here changed how it is inlined into the Aberth
+        // sweeps and slowed them: `paper-notes/isolation.md`, "Full precision").
+        let (mut v, mut dv) = (0.0, 0.0);
+        for &di in d.iter().rev() {
+            dv = dv * x + v;
+            v = v * x + di;
+        }
+        let next = x - v / dv;
+        if !next.is_finite() || next == x {
+            break;
+        }
+        x = next;
+    }
+    x
 }
 
 /// Whether the disc `i`, whose shadow `(a, b)` meets `[lo, hi]`, decides its part of the
@@ -850,7 +1042,8 @@ mod tests {
     #[test]
     fn clusters_and_double_roots_fall_through_and_are_still_right() {
         let close = Poly::from_roots(&[0.5, 0.5 + 4.0 * f64::EPSILON, 2.0, -1.0, 3.0]);
-        let double = Poly::from_roots(&[0.25, 0.25, 2.0, -1.0, 3.0]);
+        // A double root off the f64 grid: (3x − 1)², exact coefficients, root 1/3.
+        let double = &Poly::new(vec![1.0, -6.0, 9.0]) * &Poly::from_roots(&[2.0, -1.0, 3.0]);
         for p in [close, double] {
             let stats = check(&p, -10.0, 10.0);
             assert_eq!(
@@ -868,9 +1061,10 @@ mod tests {
     }
 
     #[test]
-    fn query_ends_inside_an_undecided_part_keep_the_half_open_range() {
-        // A double root at 0.25 (its discs overlap: an undecided part around it) and simple
-        // roots the discs decide; the ranges end at, just below and just above 0.25.
+    fn query_ends_at_a_multiple_root_keep_the_half_open_range() {
+        // A double root at 0.25 (its discs overlap; exact in f64, so its cluster certifies
+        // it, step 4) and simple roots the discs decide; the ranges end at, just below and
+        // just above 0.25.
         let p = Poly::from_roots(&[0.25, 0.25, -1.0, 2.0, 3.0, 5.0]);
         for (lo, hi) in [
             (-10.0, 0.25),
@@ -887,9 +1081,74 @@ mod tests {
         }
         let stats = check(&p, -10.0, 10.0);
         assert_eq!(
+            (stats.inclusion_subranges, stats.exact_fallbacks),
+            (0, 0),
+            "the double root certified by its cluster: {stats:?}"
+        );
+    }
+
+    #[test]
+    fn query_ends_inside_an_undecided_part_keep_the_half_open_range() {
+        // (3x − 1)² has exact coefficients and a double root 1/3, which is no f64: its
+        // cluster cannot be certified (step 4), an undecided part around it goes to
+        // subdivision. The ranges end at 1/3 rounded and its neighbours.
+        let third = 1.0f64 / 3.0;
+        let p = &Poly::new(vec![1.0, -6.0, 9.0]) * &Poly::from_roots(&[-1.0, 2.0, 3.0]);
+        for (lo, hi) in [
+            (-10.0, third),
+            (third, 10.0),
+            (third.next_down(), third.next_up()),
+            (-0.5, third.next_down()),
+            (third.next_up(), 2.5),
+        ] {
+            let stats = check(&p, lo, hi);
+            assert!(stats.inclusion_subranges <= 1, "({lo}, {hi}]: {stats:?}");
+        }
+        let stats = check(&p, -10.0, 10.0);
+        assert_eq!(
             stats.inclusion_subranges, 1,
             "one undecided part: {stats:?}"
         );
+    }
+
+    /// Issue 11: `(x − 1000)⁴` (Orellana & De Michele, ACM TOMS 46(2), 2020, Table 1),
+    /// stored exactly, at `x_tol = 0`. Its four discs overlap; Descartes' rule cannot isolate
+    /// a multiple root at any precision, and the query ended in exact Sturm isolation
+    /// (`exact_fallbacks` 1, about 4 M instructions). Its cluster certifies `1000` exactly.
+    #[test]
+    fn exact_quadruple_root_is_certified_by_its_cluster() {
+        let p = Poly::from_roots(&[1000.0; 4]);
+        let mut stats = RootStats::default();
+        let roots = p
+            .real_roots_with(
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                &RootOptions::new(0.0),
+                &mut stats,
+            )
+            .expect("valid query");
+        assert_eq!(roots, vec![1000.0], "{stats:?}");
+        assert_eq!(
+            (
+                stats.exact_fallbacks,
+                stats.adaptive_pieces,
+                stats.inclusion_decided
+            ),
+            (0, 0, 1),
+            "decided by the discs: {stats:?}"
+        );
+        let ivs = p.isolate_roots(-1e4, 1e4).expect("valid query");
+        assert_eq!(
+            ivs,
+            vec![crate::RootInterval {
+                lo: 1000.0,
+                hi: 1000.0
+            }]
+        );
+        for (lo, hi, want) in [(999.0, 1000.0, 1), (1000.0, 2000.0, 0), (0.0, 999.0, 0)] {
+            let n = p.real_roots(lo, hi, 0.0).expect("valid query").len();
+            assert_eq!(n, want, "({lo}, {hi}]");
+        }
     }
 
     #[test]

@@ -225,6 +225,40 @@ impl IntPoly {
         IntPoly::trimmed(q).primitive()
     }
 
+    /// Whether `(x − r)^m` divides `self` exactly (`r` a root of multiplicity at least `m`;
+    /// `m = 0` is always true). `m` divisions by the primitive linear factor `d·x − n`
+    /// (`r = n/d` in lowest terms, `d > 0`), each required to leave no remainder: by Gauss's
+    /// lemma a primitive integer divisor leaves an integer quotient, so every step stays in
+    /// integers (`d·q_{k−1} = a_k + n·q_k`, exact division or not a divisor). Cost: `m`
+    /// passes of `deg` integer products and divisions.
+    pub(crate) fn has_root_of_multiplicity(&self, r: &Rat, m: usize) -> bool {
+        let (n, d) = (r.numer(), r.denom());
+        let mut a = self.c.clone();
+        for _ in 0..m {
+            let Some(top) = a.len().checked_sub(1).filter(|&t| t > 0) else {
+                // A non-zero constant has no root; the zero polynomial is trimmed to `[]`.
+                return a.is_empty();
+            };
+            // q has degree top − 1: q_{k−1} = (a_k + n·q_k)/d from the top, q_top = 0.
+            let mut q = vec![BigInt::zero(); top];
+            let mut next = BigInt::zero();
+            for k in (1..=top).rev() {
+                let (quot, rem) = (&a[k] + n * &next).div_rem(d);
+                if !rem.is_zero() {
+                    return false;
+                }
+                q[k - 1] = quot.clone();
+                next = quot;
+            }
+            // The constant term: −n·q₀ = a₀.
+            if a[0] != -(n * &next) {
+                return false;
+            }
+            a = q;
+        }
+        true
+    }
+
     /// The exact sign (−1, 0, 1) of `p(x)`.
     ///
     /// With `x = n/d`, `d > 0`, this is the sign of `d^deg·p(x) = Σ cᵢ nⁱ d^(deg−i)`, computed
@@ -322,6 +356,23 @@ mod tests {
     }
     fn q(n: i64, d: i64) -> Rat {
         Rat::new(n.into(), d.into())
+    }
+
+    #[test]
+    fn root_multiplicity_is_exact() {
+        // (2x − 3)³(x + 1) = 8x⁴ − 28x³ + 18x² + 27x − 27.
+        let p = ip(&[-27, 27, 18, -28, 8]);
+        let r = q(3, 2);
+        assert!(p.has_root_of_multiplicity(&r, 3), "3/2 is a triple root");
+        assert!(!p.has_root_of_multiplicity(&r, 4), "not a quadruple one");
+        assert!(p.has_root_of_multiplicity(&q(-1, 1), 1), "−1 is a root");
+        assert!(!p.has_root_of_multiplicity(&q(-1, 1), 2), "a simple one");
+        assert!(!p.has_root_of_multiplicity(&q(1, 1), 1), "1 is no root");
+        assert!(!p.has_root_of_multiplicity(&q(3, 4), 1), "3/4 is no root");
+        // x²(x − 1): 0 is a double root.
+        let z = ip(&[0, 0, -1, 1]);
+        assert!(z.has_root_of_multiplicity(&q(0, 1), 2), "double root 0");
+        assert!(!z.has_root_of_multiplicity(&q(0, 1), 3), "not triple");
     }
 
     #[test]

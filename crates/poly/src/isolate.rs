@@ -449,6 +449,7 @@ impl Poly<f64> {
             Slack::NONE,
             stats,
             |_, b, _| RootInterval { lo: b.lo, hi: b.hi },
+            |r| RootInterval { lo: r, hi: r },
             |lo, hi, s, out| self.isolate_roots_subdivide(lo, hi, opts, s, out),
             out,
         )? {
@@ -486,8 +487,14 @@ impl Poly<f64> {
     /// # Accuracy
     /// Certified: one value per distinct root of the stored polynomial in `(a, b]`, none
     /// missed, each within `x_tol` of its root (absolute; within one `f64` spacing when
-    /// `x_tol` is smaller). Multiplicities are not reported. Cost: isolation plus
-    /// `O(log(1/x_tol))` evaluations per root.
+    /// `x_tol` is smaller: no `f64` lies strictly between the value and its root).
+    /// Multiplicities are not reported. Cost: isolation plus `O(log(1/x_tol))` evaluations
+    /// per root. `x_tol = 0` (full `f64` accuracy) stays in `f64` and double-double for
+    /// simple roots and for roots that are exact `f64` numbers of any multiplicity (a
+    /// multiple one is certified by its cluster of inclusion discs and an exact divisibility
+    /// check, `paper-notes/isolation.md`, "Full precision"); a multiple root of the stored
+    /// polynomial that is not an `f64` number (`(3x − 1)²`) is still answered exactly, by
+    /// exact arithmetic on its piece alone ([`RootStats::exact_fallbacks`]).
     ///
     /// # Errors
     /// As [`try_smallest_root`](Poly::try_smallest_root).
@@ -606,7 +613,18 @@ impl Poly<f64> {
         let subdivide = |lo, hi, s: &mut RootStats, out: &mut Vec<f64>| {
             self.real_roots_subdivide(lo, hi, opts, slack, s, out)
         };
-        if inclusion_first(self, a, b, opts, slack, stats, refine, subdivide, out)? {
+        if inclusion_first(
+            self,
+            a,
+            b,
+            opts,
+            slack,
+            stats,
+            refine,
+            |r| r,
+            subdivide,
+            out,
+        )? {
             return Ok(());
         }
         self.real_roots_subdivide(a, b, opts, slack, stats, out)
@@ -706,8 +724,10 @@ impl Poly<f64> {
 /// The all-roots queries' first try (issue 11): inclusion discs around simultaneous
 /// approximations of every root (`inclusion.rs`), for the default certified method without
 /// a value slack from degree [`INCLUSION_MIN_DEGREE`] on. `Ok(true)` when they answered the
-/// query: each root an isolated disc decided went through `emit` into `out`, and each part
-/// of the range they left undecided through `subdivide` (on that part alone), all in order.
+/// query: each root an isolated disc decided went through `emit` into `out`, each exact
+/// multiple root a cluster of discs certified (`inclusion.rs`, step 4) through `point`, and
+/// each part of the range they left undecided through `subdivide` (on that part alone), all
+/// in order.
 /// `Ok(false)` leaves `out` alone and the caller answers by subdivision. Counted in
 /// [`RootStats::inclusion_decided`] (no part left), [`RootStats::inclusion_undecided`]
 /// (some or all of the range subdivided) and [`RootStats::inclusion_subranges`].
@@ -723,6 +743,7 @@ fn inclusion_first<V>(
     slack: Slack<'_>,
     stats: &mut RootStats,
     mut emit: impl FnMut(&Poly<f64>, Bracket, &mut RootStats) -> V,
+    point: impl Fn(f64) -> V,
     mut subdivide: impl FnMut(f64, f64, &mut RootStats, &mut Vec<V>) -> Result<(), RootError>,
     out: &mut Vec<V>,
 ) -> Result<bool, RootError> {
@@ -745,6 +766,7 @@ fn inclusion_first<V>(
         }
         match piece {
             Piece::Root(br) => out.push(emit(p, br, stats)),
+            Piece::Multiple(r) => out.push(point(r)),
             Piece::Undecided(l, h) => {
                 parts += 1;
                 failed = subdivide(l, h, stats, out);

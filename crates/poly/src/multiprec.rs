@@ -30,7 +30,7 @@ use crate::bernstein::Bracket;
 use crate::dd_bernstein::{DdBernstein, DdOutcome};
 use crate::double_double::{DD_MIN_EXACT, DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, two_sum};
 use crate::eval_bound::{abs_weights, certified_sign, certified_value, chain_underflow_weight};
-use crate::refine::{IllinoisEnd, illinois_by};
+use crate::refine::{IllinoisEnd, illinois_by, probe_by};
 use crate::root_options::Tolerance;
 use crate::scalar::{binary_exponent, rat_from_f64};
 use crate::stats::RootStats;
@@ -902,10 +902,21 @@ pub(crate) fn refine_wide(
         let bracket = match illinois_by(b, tol, stats, eval) {
             IllinoisEnd::Root(r) => return Some(r),
             // Regula falsi converges *onto* a root: when no tier signs the trial point, it
-            // is often the root itself, exact in f64 (Vieta-built polynomials). One exact
-            // evaluation tells; the bracket holds one distinct root, so a zero is that root.
-            IllinoisEnd::Undecided { x, .. } if is_exact_root(c, x) => return Some(x),
-            IllinoisEnd::Undecided { bracket, .. } | IllinoisEnd::Exhausted(bracket) => bracket,
+            // is often the root itself, exact in f64 (Vieta-built polynomials). Signs at
+            // `x ± δ` (its neighbours when δ is below a spacing) settle it as in the f64
+            // refinement; else one exact evaluation tells (the bracket holds one distinct
+            // root, so a zero is that root).
+            IllinoisEnd::Undecided {
+                bracket, x, delta, ..
+            } => {
+                stats.refine_evals += 2;
+                let probed = probe_by(bracket, x, delta, |y| point_sign(c, y, tier).0);
+                if let Some(r) = probed.or_else(|| is_exact_root(c, x).then_some(x)) {
+                    return Some(r);
+                }
+                bracket
+            }
+            IllinoisEnd::Exhausted(bracket) => bracket,
         };
         let Bracket { lo, hi, s_lo, .. } = bracket;
         let Some((m, s, t)) = split_point(c, lo, hi, tier, 0) else {
@@ -1304,6 +1315,9 @@ mod tests {
         let p = exact_product(&[0.5, 0.5, 0.25, -1.5]).expect("exact coefficients");
         let mut stats = RootStats::default();
         check_all(&p, -2.0, 2.0, 1e-12, &mut stats);
+        // The all-roots query is answered by the inclusion discs (the double root 0.5 is
+        // exact in f64, its cluster certifies it); the subdivision meets it alone.
+        assert_eq!(p.subdivision_root_count(-2.0, 2.0, &mut stats), 3);
         assert!(stats.adaptive_pieces > 0, "{stats:?}");
         assert!(
             stats.exact_fallbacks <= 2,

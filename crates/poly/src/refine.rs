@@ -93,7 +93,10 @@ fn bisection(p: &[f64], b: Bracket, tol: Tolerance, slack: f64, stats: &mut Root
         stats.refine_evals += 1;
         let (_, s) = sign_with(p, m, horner(p, &m), err, slack);
         match s {
-            0 => return Refined::Stuck(Bracket::new(lo, hi, s_lo)),
+            0 => {
+                let delta = half_tol(tol.on(lo, hi));
+                return probe_or_stuck(p, Bracket::new(lo, hi, s_lo), m, delta, slack, stats);
+            }
             s if s == s_lo => lo = m,
             _ => hi = m,
         }
@@ -109,9 +112,10 @@ fn midpoint_or_lo(lo: f64, hi: f64) -> f64 {
     }
 }
 
-/// Tries to close the bracket around a trial point `x` whose sign was uncertain: if
-/// `x − δ` and `x + δ` (clipped to the bracket) have certified signs on the two sides, the
-/// root is within `δ` of `x`.
+/// Tries to close the bracket around a trial point `x` whose sign was uncertain: if the
+/// points of [`probe_points`] (clipped to the bracket) have certified signs on the two
+/// sides, the root is within `δ` of `x`, or within one `f64` spacing of it when `δ` is below
+/// half a spacing.
 fn probe(
     p: &[f64],
     b: Bracket,
@@ -120,11 +124,40 @@ fn probe(
     slack: f64,
     stats: &mut RootStats,
 ) -> Option<f64> {
+    stats.refine_evals += 2;
+    probe_by(b, x, delta, |y| certified_sign(p, y, slack))
+}
+
+/// The two points `x ∓ δ` at which [`probe_by`] asks for signs, each replaced by `x`'s
+/// neighbouring `f64` when `δ` is lost in the rounding (`x ± δ` rounds to `x`: a tolerance
+/// below one spacing, `x_tol = 0` in particular). Why the neighbours: a trial point whose
+/// sign no tier can certify is, at `x_tol = 0`, usually the root itself, exact in `f64`
+/// (polynomials built from `f64` roots; regula falsi and Newton converge onto it), and the
+/// neighbours' signs are then as easy as any (issue 11: the Orellana–De Michele quartics
+/// took up to 1 024-bit signs and an exact rational evaluation per root without this).
+/// Then a root between the two points is within one spacing of `x` (no `f64` strictly
+/// between them), which is what a tolerance below one spacing is promised.
+pub(crate) fn probe_points(x: f64, delta: f64) -> (f64, f64) {
     let l = x - delta;
     let h = x + delta;
-    stats.refine_evals += 2;
-    let left_ok = l <= b.lo || certified_sign(p, l, slack) == b.s_lo;
-    let right_ok = h >= b.hi || certified_sign(p, h, slack) == -b.s_lo;
+    (
+        if l < x { l } else { x.next_down() },
+        if h > x { h } else { x.next_up() },
+    )
+}
+
+/// [`probe`] with the certified sign function `sign` (0: uncertain): `Some(x)` when the
+/// points of [`probe_points`] that lie inside the bracket `b` have `b`'s end signs on their
+/// sides, so that the bracket's one root lies between them.
+pub(crate) fn probe_by(
+    b: Bracket,
+    x: f64,
+    delta: f64,
+    mut sign: impl FnMut(f64) -> i8,
+) -> Option<f64> {
+    let (l, h) = probe_points(x, delta);
+    let left_ok = l <= b.lo || sign(l) == b.s_lo;
+    let right_ok = h >= b.hi || sign(h) == -b.s_lo;
     (left_ok && right_ok).then_some(x)
 }
 
@@ -487,6 +520,8 @@ pub(crate) fn refine_rational(
 
 #[cfg(test)]
 mod tests {
+    use num_traits::Zero;
+
     use super::*;
 
     fn sqrt2_bracket() -> (Poly<f64>, Bracket) {
@@ -532,6 +567,38 @@ mod tests {
         }
     }
 
+    /// Issue 11 (the Orellana–De Michele quartics at `x_tol = 0`): a trial point that lands
+    /// exactly on a root exact in `f64` has `p = 0` there, which no rounding bound at any
+    /// precision can sign; every refinement stopped `Stuck` on it and went on to 256–1024-bit
+    /// signs and an exact rational evaluation. The root's neighbours are signed in `f64`.
+    #[test]
+    fn exact_f64_root_at_zero_tolerance_is_closed_by_its_neighbours() {
+        // Orellana & De Michele (ACM TOMS 46(2), 2020), Table 1: roots 1, 10³, 10⁶, 10⁹;
+        // ∏(x − rᵢ) has exact f64 coefficients (1.001001001e18 = 1001001001·2⁹·5⁹, etc.).
+        let p = Poly::<f64>::from_roots(&[1.0, 1e3, 1e6, 1e9]);
+        let q = p.to_rat().expect("finite");
+        assert!(
+            q.eval(&Rat::from_integer(1.into())).is_zero(),
+            "1 is an exact root"
+        );
+        for method in [
+            RefineMethod::Bisection,
+            RefineMethod::Illinois,
+            RefineMethod::NewtonBisection,
+        ] {
+            let mut stats = RootStats::default();
+            let got = refine_bracket(
+                p.coeffs(),
+                Bracket::new(0.5, 1.5, 1),
+                Tolerance::absolute(0.0),
+                method,
+                0.0,
+                &mut stats,
+            );
+            assert_eq!(got, Refined::Root(1.0), "{method:?}: {stats:?}");
+        }
+    }
+
     #[test]
     fn faster_methods_use_fewer_evaluations_than_bisection() {
         let (p, b) = sqrt2_bracket();
@@ -565,22 +632,21 @@ mod tests {
         let p = Poly::new(c);
         let b = Bracket::new(0.5, 1.5, -1);
         let mut stats = RootStats::default();
-        let stuck = refine_bracket(
+        let root = 1.0 + 2f64.powi(-10);
+        // Bisection's first midpoint, 1, is in the fog; since the probe around an uncertain
+        // midpoint (issue 11) it may still finish, but only on the root.
+        match refine_bracket(
             p.coeffs(),
             b,
             Tolerance::absolute(1e-12),
             RefineMethod::Bisection,
             0.0,
             &mut stats,
-        );
-        assert!(
-            matches!(stuck, Refined::Stuck(_)),
-            "f64 cannot certify signs near 1: {stuck:?}"
-        );
+        ) {
+            Refined::Stuck(s) => assert!(s.lo < root && root < s.hi, "root kept: {s:?}"),
+            Refined::Root(r) => assert!((r - root).abs() <= 1e-12, "f64 refinement: {r}"),
+        }
         let r = refine_exact_f64(&p, b, Tolerance::absolute(1e-12));
-        assert!(
-            (r - (1.0 + 2f64.powi(-10))).abs() <= 1e-12,
-            "exact refinement: {r}"
-        );
+        assert!((r - root).abs() <= 1e-12, "exact refinement: {r}");
     }
 }

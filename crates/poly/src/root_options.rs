@@ -102,7 +102,9 @@ pub enum RefineMethod {
 pub struct RootOptions {
     /// Bound on `|returned − true root|` (absolute, in the variable's units); must be finite
     /// and non-negative ([`RootError::InvalidTolerance`](crate::RootError) otherwise). Zero
-    /// asks for the best `f64` answer (within one unit in the last place of the root).
+    /// asks for the best `f64` answer: no `f64` strictly between the value returned and the
+    /// root (within one unit in the last place: a faithful rounding, not always the nearest
+    /// `f64`). Its cost: [`Poly::real_roots`](crate::Poly::real_roots), `# Accuracy`.
     pub x_tol: f64,
     /// Bound on `|returned − true root| / |true root|` (relative), combined with `x_tol` as
     /// `max(x_tol, rel_tol·|root|)` (see `# Accuracy`); must be finite with
