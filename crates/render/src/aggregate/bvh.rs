@@ -684,8 +684,8 @@ fn open(binary: &[BinaryNode], b: usize) -> Opened {
 /// The 4-wide tree standing for the binary tree `binary` (root at 0), root first, each node
 /// before its subtrees (depth-first), and its depth ([`BvhInfo::depth`]). Counted first, so the
 /// node array is allocated once at its size: reserving for the most nodes there can be (one
-/// per inner binary node) and shrinking at the end raised the 66 430-sphere flake's peak
-/// memory by 10 MB (`paper-notes/bvh.md`, seventh pass).
+/// per inner binary node) and shrinking at the end raised the peak memory of the largest
+/// sphereflake (`paper-notes/bvh.md`, seventh pass).
 fn collapse(binary: &[BinaryNode]) -> (Vec<Node>, usize) {
     fn count(binary: &[BinaryNode], b: usize) -> usize {
         let opened = open(binary, b);
