@@ -7,8 +7,8 @@
 //! place into its own share of one node array (`2m − 1` slots for `m` items). That tree is then
 //! collapsed into a 4-wide one for traversal (Wald et al. 2008, "Getting rid of packets";
 //! Embree's BVH4): each node takes its binary node's two children and repeatedly opens the
-//! inner child of largest surface area until it has four, and stores the four child boxes side
-//! by side ([`Bounds4`]) so that one fetch tests them all. Traversal visits the children a ray
+//! inner child of largest surface area until it has four (or none is inner), and stores the
+//! child boxes side by side ([`Bounds4`]) so that one fetch tests them all. Traversal visits the children a ray
 //! crosses in the binary tree's order (near child first by the sign of the ray direction along
 //! each split axis, a per-node table over the eight direction octants) and skips every node
 //! that starts beyond the nearest hit found so far; at most [`FLAT_MAX_ITEMS`] items are a flat
@@ -90,7 +90,7 @@ struct BinaryNode {
 #[derive(Clone, Copy, Debug)]
 #[repr(align(64))]
 struct Node {
-    /// Child `i`'s box in lane `i`; lanes from `len` on are empty.
+    /// Child `i`'s box in lane `i`; the lanes after the last child are empty.
     bounds: Bounds4,
     /// Child `i`: a leaf's first item in [`Bvh::order`] (`count[i] > 0`) or an inner node's
     /// index (`count[i] == 0`).
