@@ -260,7 +260,7 @@ fn tiny_scenes_flat_or_not_equal_brute_force() {
         let prepared = PreparedScene::new(&ValidScene::new(scene).unwrap()).expect("valid scene");
         let bounded = prepared.surfaces.len() - 1;
         assert_eq!(
-            prepared.aggregate.bvh_info().nodes == 1,
+            prepared.aggregate.bvh_info().nodes == 0,
             bounded <= render::aggregate::FLAT_MAX_ITEMS,
             "a flat list exactly up to FLAT_MAX_ITEMS bounded objects ({bounded})"
         );

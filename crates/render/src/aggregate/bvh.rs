@@ -1,23 +1,25 @@
 //! [`Bvh`]: the one bounding-volume hierarchy of the tracer, over any items that have boxes —
 //! the scene's bounded primitives and a Bézier mesh's sub-patches alike.
 //!
-//! Built top-down with the surface area heuristic over [`SAH_BINS`] centroid bins per node
-//! (Wald 2007, "On fast construction of SAH-based bounding volume hierarchies"; pbrt-v4
-//! §7.3.2), the two halves of a large node in parallel (rayon), each subtree written in place
-//! into its own share of one node array (`2m − 1` slots for `m` items), depth-first, so that a
-//! node's first child follows it and only the second child's index is stored (pbrt-v4
-//! `LinearBVHNode`; no intermediate tree, no copies); unused slots are squeezed out at the end.
-//! Traversal tests both children at their parent, visits the near one first (by the sign of
-//! the ray direction along the node's split axis) and skips every node that starts beyond the
-//! nearest hit found so far; at most [`FLAT_MAX_ITEMS`] items are a flat list. See
-//! `paper-notes/bvh.md`.
+//! Built top-down as a binary tree with the surface area heuristic over [`SAH_BINS`] centroid
+//! bins per node (Wald 2007, "On fast construction of SAH-based bounding volume hierarchies";
+//! pbrt-v4 §7.3.2), the two halves of a large node in parallel (rayon), each subtree written in
+//! place into its own share of one node array (`2m − 1` slots for `m` items). That tree is then
+//! collapsed into a 4-wide one for traversal (Wald et al. 2008, "Getting rid of packets";
+//! Embree's BVH4): each node takes its binary node's two children and repeatedly opens the
+//! inner child of largest surface area until it has four (or none is inner), and stores the
+//! child boxes side by side ([`Bounds4`]) so that one fetch tests them all. Traversal visits the children a ray
+//! crosses in the binary tree's order (near child first by the sign of the ray direction along
+//! each split axis, a per-node table over the eight direction octants) and skips every node
+//! that starts beyond the nearest hit found so far; at most [`FLAT_MAX_ITEMS`] items are a flat
+//! list. See `paper-notes/bvh.md`.
 
 use std::ops::Range;
 use std::time::{Duration, Instant};
 
 use glam::DVec3;
 
-use crate::geometry::{Bounds3, Ray, SlabRay};
+use crate::geometry::{Bounds3, Bounds4, Ray, SlabRay};
 
 /// Centroid bins per axis of the binned SAH: 16 finds splits within a few percent of the
 /// full sweep's cost at a fraction of its time (Wald 2007, §3: 8–32 bins).
@@ -32,9 +34,18 @@ pub const TRAVERSAL_COST: f64 = 0.125;
 /// depth limit is reached.
 pub const MAX_LEAF_ITEMS: usize = 4;
 
-/// Depth limit of the tree (the root has depth 1): a node this deep becomes a leaf whatever
-/// it holds, so the fixed traversal stack of this many entries never overflows.
+/// Depth limit of the binary tree the SAH builds (the root has depth 1): a node this deep
+/// becomes a leaf whatever it holds. Each level of the 4-wide tree takes at least one binary
+/// level, so its depth is bounded too, and with it the fixed traversal stack ([`STACK`]).
 pub const MAX_DEPTH: usize = 64;
+
+/// Children of a node of the traversed tree at most.
+const WIDTH: usize = 4;
+
+/// Entries of the traversal stack: a node on the path from the root leaves at most
+/// `WIDTH − 1` children on the stack (the other is visited next), over at most [`MAX_DEPTH`]
+/// levels, and a node's children are all written before the first is taken back.
+const STACK: usize = (WIDTH - 1) * MAX_DEPTH + 1;
 
 /// Hierarchies over at most this many items are a flat list: one leaf holding the items in
 /// index order, whose box is not tested. Every user's items test their own box first (an
@@ -59,12 +70,10 @@ const PARALLEL_MIN_ITEMS: usize = 4096;
 /// the brute-force one.
 pub const PRUNE_SLACK_REL: f64 = 2e-9;
 
-/// One node of the flattened tree: 57 bytes of data in one 64-byte cache line, aligned so
-/// that no node straddles two lines (a traversal step then fetches one line per node; the
-/// 132 861 nodes of the largest sphereflake, 8.5 MB, do not fit in cache).
+/// A node of the binary tree the SAH build writes (pbrt-v4 `LinearBVHNode`); it lives only
+/// until the 4-wide tree is collapsed from it.
 #[derive(Clone, Copy, Debug)]
-#[repr(align(64))]
-struct Node {
+struct BinaryNode {
     bounds: Bounds3,
     /// Leaf: first item in [`Bvh::order`]. Inner: index of the second child (the first child
     /// is the next node).
@@ -75,24 +84,57 @@ struct Node {
     axis: u8,
 }
 
-const _: () = assert!(size_of::<Node>() == 64, "a node is one cache line");
+/// A node of the traversed 4-wide tree: the boxes of its 2–4 children side by side, so that
+/// one fetch (four aligned cache lines, 232 bytes of data) tests them all; a leaf child is
+/// described here, in its parent, not by a node of its own.
+#[derive(Clone, Copy, Debug)]
+#[repr(align(64))]
+struct Node {
+    /// Child `i`'s box in lane `i`; the lanes after the last child are empty.
+    bounds: Bounds4,
+    /// Child `i`: a leaf's first item in [`Bvh::order`] (`count[i] > 0`) or an inner node's
+    /// index (`count[i] == 0`).
+    child: [u32; WIDTH],
+    /// Items of leaf child `i`; 0 for an inner child.
+    count: [u32; WIDTH],
+    /// The lanes in visiting order for a ray in direction octant `o` (bit `k` set: the
+    /// direction is negative along axis `k`), two bits a lane, the first visited in the low
+    /// bits: the order of the binary tree's traversal over the binary nodes this node replaces
+    /// ([`Opened::orders`]), then the empty lanes.
+    order: [u8; 8],
+}
+
+const _: () = assert!(size_of::<Node>() == 256, "a node is four cache lines");
+
+impl Node {
+    /// The children (the lanes before the first empty one).
+    #[cfg(test)]
+    fn len(&self) -> usize {
+        (0..WIDTH)
+            .take_while(|&lane| self.bounds.get(lane) != EMPTY)
+            .count()
+    }
+}
 
 /// What `--stats` reports about a hierarchy.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct BvhInfo {
     /// Items (primitives or sub-patches).
     pub items: usize,
-    /// Nodes, inner and leaf.
+    /// Nodes of the 4-wide tree (a leaf is a child slot of its parent, not a node; a flat list
+    /// has none).
     pub nodes: usize,
-    /// Depth of the deepest leaf (the root alone has depth 1; 0 when empty).
+    /// Depth of the deepest leaf, counting the nodes above it and the leaf (a flat list has
+    /// depth 1, a root whose children are all leaves depth 2; 0 when empty).
     pub depth: usize,
-    /// Wall time of the build.
+    /// Wall time of the build (binary tree and collapse).
     pub build: Duration,
 }
 
-/// A flattened binary BVH over items `0..n`, item `i` having box `boxes[i]`.
+/// A 4-wide BVH over items `0..n`, item `i` having box `boxes[i]`.
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
+    /// The 4-wide tree, root first; empty for a flat list.
     nodes: Vec<Node>,
     /// Item indices in leaf order.
     order: Vec<u32>,
@@ -114,9 +156,10 @@ impl Item {
     }
 }
 
-/// A slot of the build's node array not (yet) written: a subtree over `m` items is given
-/// `2m − 1` slots, and one with leaves of several items leaves some of them unused.
-const UNUSED: Node = Node {
+/// A slot of the build's node array not written: a subtree over `m` items is given `2m − 1`
+/// slots, and one with leaves of several items leaves some of them unused (the collapse never
+/// reaches them).
+const UNUSED: BinaryNode = BinaryNode {
     bounds: EMPTY,
     offset: 0,
     count: u32::MAX,
@@ -156,45 +199,57 @@ fn half_area(b: &Bounds3) -> f64 {
     d.x * d.y + d.y * d.z + d.z * d.x
 }
 
+/// The build's items: item `i` with box `boxes[i]`, taken as the box between its two corners,
+/// as the slab test reads a box; so every node box has `min ≤ max`, which
+/// [`Bounds3::slab_by_sign`] and [`Bounds4::slab_by_sign`] need.
+fn items_of(boxes: &[Bounds3]) -> Vec<Item> {
+    boxes
+        .iter()
+        .enumerate()
+        .map(|(i, b)| Item {
+            index: i as u32,
+            bounds: Bounds3::new(b.min.min(b.max), b.min.max(b.max)),
+        })
+        .collect()
+}
+
+/// The binary tree over `items` (reordered into leaf order), its root at index 0. Needs at
+/// least one item.
+fn build_binary(items: &mut [Item]) -> Vec<BinaryNode> {
+    // A binary tree with leaves of at least one item has at most 2n − 1 nodes: each subtree
+    // is written in place into its share of them; slots left unused are never reached.
+    let mut nodes = vec![UNUSED; 2 * items.len() - 1];
+    build(items, 0, 1, &mut nodes, 0);
+    nodes
+}
+
 impl Bvh {
     /// Builds the hierarchy over `boxes`. Boxes must be finite (the caller keeps unbounded
     /// items out); a flat box (zero extent on an axis) is fine.
+    ///
+    /// # Panics
+    /// If the 4-wide tree would have 2³⁰ nodes or more (a traversal stack entry names a node
+    /// and a child in 32 bits): over a billion items.
     pub fn new(boxes: &[Bounds3]) -> Self {
         let start = Instant::now();
-        let mut items: Vec<Item> = boxes
-            .iter()
-            .enumerate()
-            .map(|(i, b)| Item {
-                index: i as u32,
-                // The box between the two corners, as the slab test reads a box; so every
-                // node box has `min ≤ max`, which `Bounds3::slab_by_sign` needs.
-                bounds: Bounds3::new(b.min.min(b.max), b.min.max(b.max)),
-            })
-            .collect();
+        let mut items = items_of(boxes);
         let mut bvh = Bvh::default();
         if items.is_empty() {
             return bvh;
         }
         let depth = if items.len() <= FLAT_MAX_ITEMS {
-            // The flat list: one leaf, items in index order (see `traverse`).
-            let bounds = items.iter().fold(EMPTY, |b, it| b.union(&it.bounds));
-            bvh.nodes.push(Node {
-                bounds,
-                offset: 0,
-                count: items.len() as u32,
-                axis: 0,
-            });
+            // The flat list: no node, items in index order (see `traverse`).
+            bvh.order = items.iter().map(|it| it.index).collect();
             1
         } else {
-            // A binary tree with leaves of at least one item has at most 2n − 1 nodes: each
-            // subtree is written in place into its share of them, then the unused slots are
-            // squeezed out.
-            bvh.nodes = vec![UNUSED; 2 * items.len() - 1];
-            let (used, depth) = build(&mut items, 0, 1, &mut bvh.nodes, 0);
-            compact(&mut bvh.nodes, used);
+            let binary = build_binary(&mut items);
+            bvh.order = items.iter().map(|it| it.index).collect();
+            // The build's item copies go before the 4-wide nodes are allocated (peak memory).
+            drop(items);
+            let (nodes, depth) = collapse(&binary);
+            bvh.nodes = nodes;
             depth
         };
-        bvh.order = items.iter().map(|it| it.index).collect();
         bvh.info = BvhInfo {
             items: boxes.len(),
             nodes: bvh.nodes.len(),
@@ -228,24 +283,21 @@ impl Bvh {
         self.info
     }
 
-    /// The box of everything, `None` when empty.
-    pub fn bounds(&self) -> Option<Bounds3> {
-        self.nodes.first().map(|n| n.bounds)
-    }
-
     /// Calls `visit(item, t_max)` for the items of every leaf whose box the ray crosses before
-    /// the nearest hit so far, near children first (by the sign of the ray direction along the
-    /// node's split axis). `visit` returns the new `t_max` (the nearest hit so far, pruning
-    /// farther nodes) or `None` to stop. A flat list (at most [`FLAT_MAX_ITEMS`] items) calls
-    /// `visit` for every item, in index order, without a box test: `visit` must test the
-    /// item's own box, as every user does. Counts the boxes tested in `visits`. Allocates
+    /// the nearest hit so far, in the binary tree's order: near children first, by the sign of
+    /// the ray direction along each split axis. `visit` returns the new `t_max` (the nearest hit
+    /// so far, pruning farther nodes) or `None` to stop. A flat list (at most
+    /// [`FLAT_MAX_ITEMS`] items) calls `visit` for every item, in index order, without a box
+    /// test: `visit` must test the item's own box, as every user does. Counts in `visits` the
+    /// nodes whose children's boxes are tested, and the single boxes tested again. Allocates
     /// nothing.
     ///
-    /// Both children of an inner node are tested there, and only those the ray crosses before
-    /// `t_max` are pushed; a pushed node's box is tested again when it is popped only if `t_max`
-    /// fell since it was pushed (a shadow ray's never falls). So the leaves visited, and their
-    /// order, are those of a traversal that tests each node when it pops it; missed children
-    /// are never pushed, popped or fetched again.
+    /// All children of a node are tested there, side by side, and only those the ray crosses
+    /// before `t_max` are pushed; a pushed child's box is tested again when it is popped only
+    /// if `t_max` fell since it was pushed (a shadow ray's never falls). So the leaves visited,
+    /// and their order, are those of the binary tree's traversal testing each node when it pops
+    /// it: a child's box lies in every box of the binary nodes the collapse removed above it,
+    /// and the slab test is monotone in the box, so those tests could only repeat a yes.
     pub fn traverse(
         &self,
         ray: &Ray,
@@ -260,9 +312,12 @@ impl Bvh {
     /// any-hit query), whose pruning test would always pass: a box the slab test admits is
     /// entered before the range's end, which `t_max` then stays at.
     ///
-    /// The near child of an inner node is visited next without going through the stack (the
-    /// far one is pushed): it was tested at the current `t_max` a moment ago, as it would have
-    /// been when popped straight away, so the leaves and their order are unchanged.
+    /// The first child in order of a node is visited next without going through the stack: it
+    /// was tested at the current `t_max` a moment ago, as it would have been when popped
+    /// straight away, so the leaves and their order are unchanged. A stack entry names a child
+    /// by its parent and lane (`parent << 2 | lane`), so that a leaf child needs no node of its
+    /// own and a stale entry's box is read back from its parent.
+    #[inline(always)]
     fn traverse_with<const PRUNE: bool>(
         &self,
         ray: &Ray,
@@ -270,65 +325,114 @@ impl Bvh {
         visits: &mut u64,
         mut visit: impl FnMut(u32, f64) -> Option<f64>,
     ) {
-        let Some(root) = self.nodes.first() else {
-            return;
-        };
-        let mut t_max = range.end;
-        if self.nodes.len() == 1 {
-            // One leaf: a flat list, or a single item.
-            let first = root.offset as usize;
-            for &item in &self.order[first..first + root.count as usize] {
+        if self.nodes.is_empty() {
+            // A flat list (or nothing).
+            let mut t_max = range.end;
+            for &item in &self.order {
                 match visit(item, t_max) {
                     Some(t) => t_max = t,
                     None => return,
                 }
             }
-            return;
+        } else {
+            self.traverse_tree::<PRUNE>(ray, range, visits, visit);
         }
+    }
+
+    /// [`Bvh::traverse_with`] on a tree. Not inlined into the queries, so that they stay small
+    /// enough to be inlined into their callers, where a flat list (the one-object scenes of
+    /// issue 10) then costs no call.
+    #[inline(never)]
+    fn traverse_tree<const PRUNE: bool>(
+        &self,
+        ray: &Ray,
+        range: Range<f64>,
+        visits: &mut u64,
+        mut visit: impl FnMut(u32, f64) -> Option<f64>,
+    ) {
+        let mut t_max = range.end;
         let slab_ray = SlabRay::new(ray);
-        let dir_neg = [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0];
+        let octant = usize::from(ray.dir.x < 0.0)
+            | usize::from(ray.dir.y < 0.0) << 1
+            | usize::from(ray.dir.z < 0.0) << 2;
         let (start, end) = (range.start, range.end);
-        let crosses = |node: &Node, t_max: f64| {
-            if PRUNE {
-                crosses(node, &slab_ray, start..end, t_max)
-            } else {
-                node.bounds.slab_by_sign(&slab_ray, start, end).is_some()
+        // The children of `node` the ray crosses before `t_max`, one bit a lane.
+        let crossed = |node: &Node, t_max: f64| -> u32 {
+            let (t0, t1) = node.bounds.slab_by_sign(&slab_ray, start, end);
+            let mut mask = 0;
+            for lane in 0..WIDTH {
+                let (near, far) = (t0[lane], t1[lane]);
+                // `crosses` on each lane, without branches: missed when `near > far` (not
+                // `near <= far`, which a NaN end would fail), else pruned beyond `t_max`.
+                let missed = near > far;
+                let hit = if PRUNE {
+                    !missed & (near <= t_max + PRUNE_SLACK_REL * (near.abs() + (far - near)))
+                } else {
+                    !missed
+                };
+                mask |= u32::from(hit) << lane;
             }
+            mask
         };
-        *visits += 1;
-        if !crosses(root, t_max) {
-            return;
-        }
-        let mut stack = [0u32; MAX_DEPTH];
+        let mut stack = [0u32; STACK];
         let mut top = 0;
         // Entries below `stale` were pushed before `t_max` last fell: retested when popped.
         let mut stale = 0;
-        // The node to visit next, already tested at the current `t_max`; else pop one.
-        let mut next = Some(0u32);
+        // The node whose children are tested next.
+        let mut expand = Some(0usize);
         loop {
-            let index = match next.take() {
-                Some(index) => index as usize,
+            // The child visited next: the first in order of the node just tested, else popped.
+            let mut next = None;
+            if let Some(index) = expand.take() {
+                let node = &self.nodes[index];
+                *visits += 1;
+                let mask = crossed(node, t_max);
+                if mask & mask.wrapping_sub(1) == 0 {
+                    // One child crossed or none (the common cases near the leaves): no order.
+                    if mask != 0 {
+                        next = Some((index as u32) << 2 | mask.trailing_zeros());
+                    }
+                } else {
+                    // Every lane written, the crossed ones kept (an empty lane never is): the
+                    // last in order first, so the first crossed one ends on top and is taken
+                    // straight back.
+                    let order = node.order[octant];
+                    for position in (0..WIDTH).rev() {
+                        let lane = u32::from(order >> (2 * position)) & 3;
+                        stack[top] = (index as u32) << 2 | lane;
+                        top += ((mask >> lane) & 1) as usize;
+                    }
+                    top -= 1;
+                    next = Some(stack[top]);
+                }
+            }
+            let entry = match next {
+                Some(entry) => entry,
                 None => {
                     if top == 0 {
                         return;
                     }
                     top -= 1;
-                    let index = stack[top] as usize;
+                    let entry = stack[top];
                     if top < stale {
                         stale = top;
                         *visits += 1;
-                        if !crosses(&self.nodes[index], t_max) {
+                        let parent = &self.nodes[(entry >> 2) as usize];
+                        let bounds = parent.bounds.get((entry & 3) as usize);
+                        if !crosses(&bounds, &slab_ray, start..end, t_max) {
                             continue;
                         }
                     }
-                    index
+                    entry
                 }
             };
-            let node = &self.nodes[index];
-            if node.count > 0 {
-                let first = node.offset as usize;
+            let parent = &self.nodes[(entry >> 2) as usize];
+            let lane = (entry & 3) as usize;
+            let count = parent.count[lane];
+            if count > 0 {
+                let first = parent.child[lane] as usize;
                 let before = t_max;
-                for &item in &self.order[first..first + node.count as usize] {
+                for &item in &self.order[first..first + count as usize] {
                     match visit(item, t_max) {
                         Some(t) => t_max = t,
                         None => return,
@@ -338,22 +442,7 @@ impl Bvh {
                     stale = top;
                 }
             } else {
-                // Push the far child, go on with the near one. The depth limit bounds the
-                // stack: each level leaves at most one child on it.
-                let (first, second) = (index as u32 + 1, node.offset);
-                let (near_child, far_child) = if dir_neg[node.axis as usize] {
-                    (second, first)
-                } else {
-                    (first, second)
-                };
-                *visits += 2;
-                if crosses(&self.nodes[far_child as usize], t_max) {
-                    stack[top] = far_child;
-                    top += 1;
-                }
-                if crosses(&self.nodes[near_child as usize], t_max) {
-                    next = Some(near_child);
-                }
+                expand = Some(parent.child[lane] as usize);
             }
         }
     }
@@ -405,12 +494,12 @@ impl Bvh {
     }
 }
 
-/// Whether the ray enters `node` in `range` before `t_max`, the nearest hit so far, up to
-/// [`PRUNE_SLACK_REL`] (the pruning test of [`Bvh::traverse`]). Always inlined: it is the
-/// traversal's inner loop, and as a call it cost more than the slab test itself.
+/// Whether the ray enters `bounds` in `range` before `t_max`, the nearest hit so far, up to
+/// [`PRUNE_SLACK_REL`] (the pruning test of [`Bvh::traverse`], which tests four boxes at once
+/// the same way, lane by lane).
 #[inline(always)]
-fn crosses(node: &Node, ray: &SlabRay, range: Range<f64>, t_max: f64) -> bool {
-    node.bounds
+fn crosses(bounds: &Bounds3, ray: &SlabRay, range: Range<f64>, t_max: f64) -> bool {
+    bounds
         .slab_by_sign(ray, range.start, range.end)
         .is_some_and(|(near, far)| near <= t_max + PRUNE_SLACK_REL * (near.abs() + (far - near)))
 }
@@ -429,14 +518,8 @@ pub(super) fn precedes<H>(item: u32, t: f64, best: &Option<(u32, f64, H)>, end: 
 /// of the whole array: the first child of an inner node follows it, the second starts the
 /// second half of its slots (`2·m − 1` slots for a child over `m` items). The two halves of a
 /// large node are built in parallel into their disjoint slots, so nothing is copied and no
-/// temporary node array exists. Returns the slots used and the subtree's depth.
-fn build(
-    items: &mut [Item],
-    first: usize,
-    depth: usize,
-    out: &mut [Node],
-    base: usize,
-) -> (usize, usize) {
+/// temporary node array exists.
+fn build(items: &mut [Item], first: usize, depth: usize, out: &mut [BinaryNode], base: usize) {
     // The node's box and the box of its items' centres, in one pass.
     let (bounds, centres) = items.iter().fold((EMPTY, EMPTY), |(b, c), it| {
         let centre = it.centre();
@@ -446,7 +529,7 @@ fn build(
         )
     });
     let n = items.len();
-    let leaf = Node {
+    let leaf = BinaryNode {
         bounds,
         offset: first as u32,
         count: n as u32,
@@ -454,7 +537,7 @@ fn build(
     };
     if n == 1 || depth >= MAX_DEPTH {
         out[0] = leaf;
-        return (1, 1);
+        return;
     }
     let ext = centres.max - centres.min;
     let axis = if ext.x >= ext.y && ext.x >= ext.z {
@@ -469,18 +552,18 @@ fn build(
             Some(mid) => mid,
             None => {
                 out[0] = leaf;
-                return (1, 1);
+                return;
             }
         }
     } else if n <= MAX_LEAF_ITEMS {
         out[0] = leaf;
-        return (1, 1);
+        return;
     } else {
         // Equal centres: no split separates them; halve by count so leaves stay small.
         n / 2
     };
     let second = base + 2 * mid;
-    out[0] = Node {
+    out[0] = BinaryNode {
         bounds,
         offset: second as u32,
         count: 0,
@@ -488,47 +571,164 @@ fn build(
     };
     let (lo, hi) = items.split_at_mut(mid);
     let (left, right) = out[1..].split_at_mut(2 * mid - 1);
-    let ((ul, dl), (ur, dr)) = if n > PARALLEL_MIN_ITEMS {
+    if n > PARALLEL_MIN_ITEMS {
         rayon::join(
             || build(lo, first, depth + 1, left, base + 1),
             || build(hi, first + mid, depth + 1, right, second),
-        )
+        );
     } else {
-        (
-            build(lo, first, depth + 1, left, base + 1),
-            build(hi, first + mid, depth + 1, right, second),
-        )
-    };
-    (1 + ul + ur, 1 + dl.max(dr))
+        build(lo, first, depth + 1, left, base + 1);
+        build(hi, first + mid, depth + 1, right, second);
+    }
 }
 
-/// Squeezes the [`UNUSED`] slots out of the node array written by [`build`] (`used` slots are
-/// nodes), keeping the depth-first order and renumbering the second-child indices. In place:
-/// a node only moves down, so each is read before any write reaches its slot.
-fn compact(nodes: &mut Vec<Node>, used: usize) {
-    if used < nodes.len() {
-        // The new index of each slot: the nodes before it.
-        let mut new_index = Vec::with_capacity(nodes.len());
-        let mut k = 0u32;
-        for node in nodes.iter() {
-            new_index.push(k);
-            k += u32::from(node.count != UNUSED.count);
-        }
-        let mut at = 0;
-        for i in 0..nodes.len() {
-            let mut node = nodes[i];
-            if node.count == UNUSED.count {
+/// The children of the 4-wide node standing for a binary node: binary nodes, each with the
+/// path that leads to it from there (the split axis and side, first or second child, of each
+/// binary node the collapse removed above it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Opened {
+    /// The children's binary nodes; `slots[..len]` are used.
+    slots: [usize; WIDTH],
+    len: usize,
+    /// `(axis, side)` of each step from the opened node to child `i`, `steps[i]` of them.
+    path: [[(u8, u8); WIDTH - 1]; WIDTH],
+    steps: [usize; WIDTH],
+}
+
+impl Opened {
+    /// For each direction octant `o` (bit `k`: negative along axis `k`, where the near child of
+    /// a split along `k` is the second), the children in the order the binary traversal
+    /// reaches them, packed two bits each, the first in the low bits, then the unused lanes.
+    /// A child's rank is its path read as a binary number, a step's bit being 1 when it goes
+    /// to the far side: no path is the beginning of another, so the first step where two paths
+    /// differ decides, as in the binary traversal. Its rank for octant `o` is its rank for
+    /// octant 0 with the bits of the steps along the axes negative in `o` flipped.
+    fn orders(&self) -> [u8; 8] {
+        let mut base = [0usize; WIDTH];
+        let mut flip = [[0usize; 3]; WIDTH];
+        for lane in 0..WIDTH {
+            if lane >= self.len {
+                // After every used lane (ranks below 2^(WIDTH − 1)).
+                base[lane] = (1 << (WIDTH - 1)) + lane;
                 continue;
             }
-            if node.count == 0 {
-                node.offset = new_index[node.offset as usize];
+            for (d, &(axis, side)) in self.path[lane][..self.steps[lane]].iter().enumerate() {
+                let bit = 1 << (WIDTH - 2 - d);
+                base[lane] |= usize::from(side) * bit;
+                flip[lane][usize::from(axis)] |= bit;
             }
-            nodes[at] = node;
-            at += 1;
         }
-        nodes.truncate(used);
-        nodes.shrink_to_fit();
+        std::array::from_fn(|octant| {
+            let rank: [usize; WIDTH] = std::array::from_fn(|lane| {
+                (0..3).fold(base[lane], |r, k| r ^ (flip[lane][k] * ((octant >> k) & 1)))
+            });
+            // Each lane's position: the lanes ranked before it (ranks are distinct).
+            let mut packed = 0;
+            for (lane, &r) in rank.iter().enumerate() {
+                let position = rank.iter().filter(|&&other| other < r).count();
+                packed |= (lane as u8) << (2 * position);
+            }
+            packed
+        })
     }
+}
+
+/// The children of the 4-wide node standing for binary node `b`: starting from `b` itself, the
+/// inner one of largest surface area is replaced by its two children until there are
+/// [`WIDTH`] or no inner one is left (Wald et al. 2008, §3.1; Embree's collapse of a binary
+/// tree into a wide one). Opening the largest boxes first removes the binary levels a ray is
+/// most likely to pass through. The first of equal areas is opened.
+fn open(binary: &[BinaryNode], b: usize) -> Opened {
+    let mut opened = Opened {
+        slots: [b; WIDTH],
+        len: 1,
+        path: [[(0, 0); WIDTH - 1]; WIDTH],
+        steps: [0; WIDTH],
+    };
+    // Half the surface area of each inner child, −1 for a leaf (never opened).
+    let area = |s: usize| {
+        let node = &binary[s];
+        if node.count == 0 {
+            half_area(&node.bounds)
+        } else {
+            -1.0
+        }
+    };
+    let mut areas = [area(b), 0.0, 0.0, 0.0];
+    while opened.len < WIDTH {
+        let mut widest: Option<(usize, f64)> = None;
+        for (i, &a) in areas[..opened.len].iter().enumerate() {
+            if a >= 0.0 && widest.is_none_or(|(_, w)| a > w) {
+                widest = Some((i, a));
+            }
+        }
+        let Some((i, _)) = widest else {
+            break;
+        };
+        let (s, new) = (opened.slots[i], opened.len);
+        let axis = binary[s].axis;
+        opened.slots[i] = s + 1;
+        opened.slots[new] = binary[s].offset as usize;
+        opened.path[new] = opened.path[i];
+        opened.steps[new] = opened.steps[i] + 1;
+        opened.path[i][opened.steps[i]] = (axis, 0);
+        opened.path[new][opened.steps[i]] = (axis, 1);
+        opened.steps[i] += 1;
+        areas[i] = area(s + 1);
+        areas[new] = area(opened.slots[new]);
+        opened.len += 1;
+    }
+    opened
+}
+
+/// The 4-wide tree standing for the binary tree `binary` (root at 0), root first, each node
+/// before its subtrees (depth-first), and its depth ([`BvhInfo::depth`]). Counted first, so the
+/// node array is allocated once at its size: reserving for the most nodes there can be (one
+/// per inner binary node) and shrinking at the end raised the peak memory of the largest
+/// sphereflake (`paper-notes/bvh.md`, seventh pass).
+fn collapse(binary: &[BinaryNode]) -> (Vec<Node>, usize) {
+    fn count(binary: &[BinaryNode], b: usize) -> usize {
+        let opened = open(binary, b);
+        1 + opened.slots[..opened.len]
+            .iter()
+            .filter(|&&s| binary[s].count == 0)
+            .map(|&s| count(binary, s))
+            .sum::<usize>()
+    }
+    /// Writes the node standing for `b` and its subtrees; its index and depth.
+    fn write(binary: &[BinaryNode], b: usize, out: &mut Vec<Node>) -> (u32, usize) {
+        let opened = open(binary, b);
+        let index = out.len();
+        let slots = &opened.slots[..opened.len];
+        let mut node = Node {
+            bounds: Bounds4::EMPTY,
+            child: [0; WIDTH],
+            count: [0; WIDTH],
+            order: opened.orders(),
+        };
+        for (lane, &s) in slots.iter().enumerate() {
+            let child = &binary[s];
+            node.bounds.set(lane, &child.bounds);
+            // A leaf's items; an inner child's index is known once it is written, below.
+            node.child[lane] = child.offset;
+            node.count[lane] = child.count;
+        }
+        out.push(node);
+        let mut depth = 2;
+        for (lane, &s) in slots.iter().enumerate() {
+            if binary[s].count == 0 {
+                let (at, d) = write(binary, s, out);
+                out[index].child[lane] = at;
+                depth = depth.max(1 + d);
+            }
+        }
+        (index as u32, depth)
+    }
+    let n = count(binary, 0);
+    assert!(n < 1 << 30, "a 4-wide tree of {n} nodes: fewer than 2^30");
+    let mut nodes = Vec::with_capacity(n);
+    let (_, depth) = write(binary, 0, &mut nodes);
+    (nodes, depth)
 }
 
 /// The cheapest binned SAH split of `items` along `axis` (centres spanning `lo .. lo + ext`):
@@ -715,7 +915,9 @@ mod tests {
         let bvh = Bvh::new(&boxes);
         assert!(bvh.info().depth <= MAX_DEPTH);
         assert!(
-            bvh.nodes.iter().all(|n| n.count as usize <= MAX_LEAF_ITEMS),
+            bvh.nodes
+                .iter()
+                .all(|n| n.count.iter().all(|&c| c as usize <= MAX_LEAF_ITEMS)),
             "leaves of at most {MAX_LEAF_ITEMS}"
         );
         let ray = Ray::new(DVec3::new(0.5, 0.5, 5.0), DVec3::NEG_Z);
@@ -743,14 +945,21 @@ mod tests {
         assert_eq!(hit.map(|h| h.0), Some(0), "the tie goes to item 0");
     }
 
-    /// A traversal's callback: an item and the `t_max` it sees, the new `t_max` back.
-    type Visit<'a> = dyn FnMut(u32, f64) -> Option<f64> + 'a;
+    /// The binary tree the SAH build writes over `boxes` and its item order, as [`Bvh::new`]
+    /// builds it before the collapse.
+    fn binary_tree(boxes: &[Bounds3]) -> (Vec<BinaryNode>, Vec<u32>) {
+        let mut items = items_of(boxes);
+        let binary = build_binary(&mut items);
+        (binary, items.iter().map(|it| it.index).collect())
+    }
 
-    /// The traversal before children were tested at their parent (issue 12, third pass): pop a
-    /// node, test its box, prune, and push both children of an inner node. The leaves it visits
-    /// and their order are what [`Bvh::traverse`] must reproduce.
+    /// The binary tree's traversal before children were tested at their parent (issue 12,
+    /// third pass): pop a node, test its box, prune, and push both children of an inner node,
+    /// the far one (by the sign of the direction along the split axis) first. The leaves it
+    /// visits and their order are what [`Bvh::traverse`] on the collapsed tree must reproduce.
     fn pop_then_test(
-        bvh: &Bvh,
+        binary: &[BinaryNode],
+        order: &[u32],
         ray: &Ray,
         range: Range<f64>,
         mut visit: impl FnMut(u32, f64) -> Option<f64>,
@@ -759,7 +968,7 @@ mod tests {
         let mut t_max = range.end;
         let mut stack = vec![0u32];
         while let Some(index) = stack.pop() {
-            let node = &bvh.nodes[index as usize];
+            let node = &binary[index as usize];
             let Some((near, far)) = node.bounds.slab(&slab_ray, range.start, range.end) else {
                 continue;
             };
@@ -768,7 +977,7 @@ mod tests {
             }
             if node.count > 0 {
                 let first = node.offset as usize;
-                for &item in &bvh.order[first..first + node.count as usize] {
+                for &item in &order[first..first + node.count as usize] {
                     match visit(item, t_max) {
                         Some(t) => t_max = t,
                         None => return,
@@ -785,14 +994,21 @@ mod tests {
         }
     }
 
+    /// A traversal's callback: an item and the `t_max` it sees, the new `t_max` back.
+    type Visit<'a> = dyn FnMut(u32, f64) -> Option<f64> + 'a;
+
     #[test]
-    fn children_tested_at_the_parent_visit_the_leaves_of_pop_then_test() {
+    fn the_4_wide_traversal_visits_the_leaves_of_the_binary_pop_then_test() {
         // Random boxes (some flat, some sharing faces on a unit grid); random rays; each item
         // "hit" at its box entry plus a per-item offset, so `t_max` falls during the traversal
         // and the retest of stale stack entries is exercised. The calls to `visit` — items,
-        // order and the `t_max` each saw — must be those of the pop-then-test traversal.
+        // order and the `t_max` each saw — must be those of the binary tree's pop-then-test
+        // traversal, on trees whose nodes have 2, 3 and 4 children, leaves mixed with inner
+        // children among them.
         use rand::{Rng, SeedableRng};
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12);
+        let mut widths = [0usize; WIDTH + 1];
+        let mut mixed = 0;
         for round in 0..20 {
             let n = 5 + round * 13;
             let boxes: Vec<Bounds3> = (0..n)
@@ -811,7 +1027,15 @@ mod tests {
                 })
                 .collect();
             let bvh = Bvh::new(&boxes);
-            assert!(bvh.nodes.len() > 1, "a tree, not a flat list");
+            let (binary, order) = binary_tree(&boxes);
+            assert_eq!(bvh.order, order, "the collapse keeps the leaf order");
+            assert!(!bvh.nodes.is_empty(), "a tree, not a flat list");
+            for node in &bvh.nodes {
+                let len = node.len();
+                widths[len] += 1;
+                let leaves = node.count[..len].iter().filter(|&&c| c > 0).count();
+                mixed += usize::from(leaves > 0 && leaves < len);
+            }
             for k in 0..200 {
                 let mut o = DVec3::new(
                     rng.gen_range(-10.0..10.0),
@@ -849,10 +1073,26 @@ mod tests {
                     seen
                 };
                 let fast = calls(&|f| bvh.traverse(&ray, 0.0..f64::INFINITY, &mut 0, f));
-                let slow = calls(&|f| pop_then_test(&bvh, &ray, 0.0..f64::INFINITY, f));
+                let slow = calls(&|f| pop_then_test(&binary, &order, &ray, 0.0..f64::INFINITY, f));
                 assert_eq!(fast, slow, "visits of {ray:?} over {n} boxes");
+                // The any-hit traversal reaches the same leaves in the same order.
+                let mut any = Vec::new();
+                bvh.any(&ray, 0.0..f64::INFINITY, &mut 0, |i| {
+                    any.push(i);
+                    Some(i) == stop_at
+                });
+                let mut all = Vec::new();
+                pop_then_test(&binary, &order, &ray, 0.0..f64::INFINITY, |i, t| {
+                    all.push(i);
+                    (Some(i) != stop_at).then_some(t)
+                });
+                assert_eq!(any, all, "any-hit visits of {ray:?} over {n} boxes");
             }
         }
+        assert!(
+            widths[2] > 0 && widths[3] > 0 && widths[4] > 0 && mixed > 0,
+            "nodes of 2, 3 and 4 children ({widths:?}), {mixed} mixing leaves and inner nodes"
+        );
     }
 
     #[test]
@@ -864,7 +1104,11 @@ mod tests {
             .map(|i| unit_box(2.0 * i as f64))
             .collect();
         let bvh = Bvh::new(&boxes);
-        assert_eq!(bvh.info().nodes, 1, "one leaf");
+        assert_eq!(
+            (bvh.info().nodes, bvh.info().depth),
+            (0, 1),
+            "no node, one leaf"
+        );
         let ray = Ray::new(DVec3::new(0.5, 50.0, 0.5), DVec3::Y);
         let (mut visits, mut seen) = (0, Vec::new());
         bvh.traverse(&ray, 0.0..f64::INFINITY, &mut visits, |i, t| {
@@ -878,53 +1122,65 @@ mod tests {
             .map(|i| unit_box(2.0 * i as f64))
             .collect();
         let bvh = Bvh::new(&boxes);
-        assert!(bvh.info().nodes > 1, "a tree");
+        assert!(bvh.info().nodes > 0, "a tree");
         seen.clear();
         bvh.traverse(&ray, 0.0..f64::INFINITY, &mut visits, |i, t| {
             seen.push(i);
             Some(t)
         });
         assert!(seen.is_empty(), "the tree prunes at its root: {seen:?}");
-        assert_eq!(visits, 1, "the root's box only");
+        assert_eq!(visits, 1, "the root's children only");
     }
 
-    /// Checks the subtree at `i` and returns its node count: an inner node's first child is
-    /// `i + 1` and its second child follows the first's subtree; boxes hold their children's
-    /// and items' boxes; leaves list their items in `order`. Marks the items seen.
-    fn check_subtree(bvh: &Bvh, boxes: &[Bounds3], i: usize, seen: &mut [bool]) -> usize {
+    /// Checks the subtree of node `i` and returns its node count and depth: every lane up to
+    /// `len` holds its child's boxes (a leaf's items, an inner node's lanes), the lanes beyond
+    /// are empty, inner children come after their parent, and each octant's order lists every
+    /// child once. Marks the items seen.
+    fn check_subtree(bvh: &Bvh, boxes: &[Bounds3], i: usize, seen: &mut [bool]) -> (usize, usize) {
         let node = &bvh.nodes[i];
         let holds = |outer: &Bounds3, inner: &Bounds3| {
             outer.min.cmple(inner.min).all() && outer.max.cmpge(inner.max).all()
         };
-        if node.count > 0 {
-            assert_ne!(node.count, UNUSED.count, "an unused slot at {i}");
-            let first = node.offset as usize;
-            for &item in &bvh.order[first..first + node.count as usize] {
-                assert!(!seen[item as usize], "item {item} in two leaves");
-                seen[item as usize] = true;
-                assert!(
-                    holds(&node.bounds, &boxes[item as usize]),
-                    "leaf {i} holds {item}"
-                );
+        let len = node.len();
+        assert!((2..=WIDTH).contains(&len), "node {i}: {len} children");
+        for order in node.order {
+            let mut lanes: Vec<u8> = (0..len).map(|p| (order >> (2 * p)) & 3).collect();
+            lanes.sort_unstable();
+            assert_eq!(lanes, (0..len as u8).collect::<Vec<_>>(), "node {i}: order");
+        }
+        let (mut count, mut depth) = (1, 2);
+        for lane in 0..WIDTH {
+            let b = node.bounds.get(lane);
+            if lane >= len {
+                assert_eq!(b, EMPTY, "node {i}: lane {lane} empty");
+                continue;
             }
-            return 1;
+            if node.count[lane] > 0 {
+                let first = node.child[lane] as usize;
+                for &item in &bvh.order[first..first + node.count[lane] as usize] {
+                    assert!(!seen[item as usize], "item {item} in two leaves");
+                    seen[item as usize] = true;
+                    assert!(holds(&b, &boxes[item as usize]), "node {i} holds {item}");
+                }
+            } else {
+                let c = node.child[lane] as usize;
+                assert!(c > i, "node {i}: child {c} after its parent");
+                for inner in 0..bvh.nodes[c].len() {
+                    assert!(holds(&b, &bvh.nodes[c].bounds.get(inner)), "{i} holds {c}");
+                }
+                let (n, d) = check_subtree(bvh, boxes, c, seen);
+                count += n;
+                depth = depth.max(1 + d);
+            }
         }
-        for child in [i + 1, node.offset as usize] {
-            assert!(
-                holds(&node.bounds, &bvh.nodes[child].bounds),
-                "{i} holds {child}"
-            );
-        }
-        let left = check_subtree(bvh, boxes, i + 1, seen);
-        assert_eq!(node.offset as usize, i + 1 + left, "second child of {i}");
-        1 + left + check_subtree(bvh, boxes, node.offset as usize, seen)
+        (count, depth)
     }
 
     #[test]
-    fn the_in_place_build_writes_a_compact_depth_first_tree() {
-        // Above the parallel threshold, with single-item leaves (distinct boxes: every slot
-        // used) and with leaves of several items (groups of equal boxes: unused slots squeezed
-        // out), and a few items (sequential).
+    fn the_collapsed_tree_holds_every_item_once() {
+        // Above the parallel threshold, with single-item leaves (distinct boxes) and with
+        // leaves of several items (groups of equal boxes: unused slots of the binary build
+        // never reached), and a few items (sequential).
         use rand::{Rng, SeedableRng};
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12);
         let distinct: Vec<Bounds3> = (0..PARALLEL_MIN_ITEMS + 3000)
@@ -944,17 +1200,138 @@ mod tests {
         for (name, boxes) in [("distinct", distinct), ("grouped", grouped), ("few", few)] {
             let bvh = Bvh::new(&boxes);
             let mut seen = vec![false; boxes.len()];
-            let count = check_subtree(&bvh, &boxes, 0, &mut seen);
+            let (count, depth) = check_subtree(&bvh, &boxes, 0, &mut seen);
             assert_eq!(count, bvh.nodes.len(), "{name}: every node reached once");
             assert!(seen.iter().all(|&s| s), "{name}: every item in a leaf");
-            assert_eq!(bvh.info().nodes, bvh.nodes.len(), "{name}: info");
-            if name == "grouped" {
+            assert_eq!(
+                (bvh.info().nodes, bvh.info().depth),
+                (count, depth),
+                "{name}: info"
+            );
+            // A node has fewer than four children only when its binary subtree ran out of
+            // inner nodes to open: all its children are leaves.
+            for (i, node) in bvh.nodes.iter().enumerate() {
+                let len = node.len();
                 assert!(
-                    bvh.nodes.len() < 2 * boxes.len() - 1,
-                    "leaves of several items"
+                    len == WIDTH || node.count[..len].iter().all(|&c| c > 0),
+                    "{name}: node {i} has {len} children, not all leaves"
                 );
             }
         }
+    }
+
+    /// A binary node for the hand-written trees below: an inner node with its second child at
+    /// `second` along `axis`, or a leaf of one item.
+    fn inner(bounds: Bounds3, second: u32, axis: u8) -> BinaryNode {
+        BinaryNode {
+            bounds,
+            offset: second,
+            count: 0,
+            axis,
+        }
+    }
+
+    fn leaf(bounds: Bounds3, item: u32) -> BinaryNode {
+        BinaryNode {
+            bounds,
+            offset: item,
+            count: 1,
+            axis: 0,
+        }
+    }
+
+    fn cube(lo: [f64; 3], hi: [f64; 3]) -> Bounds3 {
+        Bounds3::new(DVec3::from_array(lo), DVec3::from_array(hi))
+    }
+
+    /// The binary tree root(x) → A(y) → (A1(x) → (a, b), c); B(z) → (d, e), depth-first, with
+    /// `b_box` as B's box and its two leaves inside it.
+    fn hand_tree(b_box: Bounds3) -> Vec<BinaryNode> {
+        let a1 = cube([0.0; 3], [8.0, 4.0, 4.0]);
+        let a = cube([0.0; 3], [8.0, 5.0, 4.0]);
+        let (blo, bhi) = (b_box.min, b_box.max);
+        let bmid = (blo.z + bhi.z) / 2.0;
+        vec![
+            inner(a.union(&b_box), 6, 0),
+            inner(a, 5, 1),
+            inner(a1, 4, 0),
+            leaf(cube([0.0; 3], [4.0; 3]), 0),
+            leaf(cube([4.0, 0.0, 0.0], [8.0, 4.0, 4.0]), 1),
+            leaf(cube([0.0, 4.0, 0.0], [1.0, 5.0, 1.0]), 2),
+            inner(b_box, 8, 2),
+            leaf(Bounds3::new(blo, DVec3::new(bhi.x, bhi.y, bmid)), 3),
+            leaf(Bounds3::new(DVec3::new(blo.x, blo.y, bmid), bhi), 4),
+        ]
+    }
+
+    /// The packed visiting order of lanes `lanes` (first visited first).
+    fn packed(lanes: [u8; 4]) -> u8 {
+        lanes[0] | lanes[1] << 2 | lanes[2] << 4 | lanes[3] << 6
+    }
+
+    #[test]
+    fn the_collapse_opens_the_child_of_largest_area_and_keeps_the_binary_order() {
+        // B small (half area 7 < A1's 80): A is opened, then A1; B stays a child.
+        let small = hand_tree(cube([10.0, 0.0, 0.0], [11.0, 3.0, 1.0]));
+        let opened = open(&small, 0);
+        assert_eq!((opened.slots, opened.len), ([3, 6, 5, 4], 4), "a, B, c, b");
+        // All directions positive: A before B, A1 before c, a before b.
+        assert_eq!(opened.orders()[0], packed([0, 3, 2, 1]));
+        // x negative: B first, then A; in A1 (split along x) b before a; then c.
+        assert_eq!(opened.orders()[1], packed([1, 3, 0, 2]));
+        // y negative: in A (split along y) c before A1.
+        assert_eq!(opened.orders()[2], packed([2, 0, 3, 1]));
+        // z only: as all positive (no split of these four along z).
+        assert_eq!(opened.orders()[4], packed([0, 3, 2, 1]));
+        // B large (half area 800 > A's 92): B is opened first, then A; A1 stays a child.
+        let large = hand_tree(cube([10.0, 0.0, 0.0], [30.0, 20.0, 10.0]));
+        let opened = open(&large, 0);
+        assert_eq!((opened.slots, opened.len), ([2, 7, 8, 5], 4), "A1, d, e, c");
+        assert_eq!(opened.orders()[0], packed([0, 3, 1, 2]));
+        // z negative: e before d.
+        assert_eq!(opened.orders()[4], packed([0, 3, 2, 1]));
+        // A node over leaves only keeps fewer children: B alone opens into d and e; the
+        // empty lanes come last in every order.
+        let opened = open(&large, 6);
+        assert_eq!((&opened.slots[..2], opened.len), (&[7, 8][..], 2), "d, e");
+        assert_eq!(opened.orders()[0], packed([0, 1, 2, 3]));
+        assert_eq!(opened.orders()[4], packed([1, 0, 2, 3]));
+        let (nodes, depth) = collapse(&small);
+        assert_eq!((nodes.len(), depth), (2, 3), "root and B; leaves under B");
+        assert_eq!(
+            (nodes[0].child, nodes[0].count),
+            ([0, 1, 2, 1], [1, 0, 1, 1]),
+            "items a, c, b in the root, B its node 1"
+        );
+    }
+
+    #[test]
+    fn a_tree_at_the_depth_limit_stays_within_the_stack() {
+        // Boxes at x = 2^k: the SAH splits one box off the top at each level, so the binary
+        // tree reaches MAX_DEPTH, and a ray along x crosses every box, leaving children on the
+        // stack at every level.
+        let boxes: Vec<Bounds3> = (0..200).map(|k| unit_box(2f64.powi(k))).collect();
+        let bvh = Bvh::new(&boxes);
+        let (binary, order) = binary_tree(&boxes);
+        let ray = Ray::new(DVec3::new(-1.0, 0.5, 0.5), DVec3::X);
+        let mut seen = Vec::new();
+        bvh.traverse(&ray, 0.0..f64::INFINITY, &mut 0, |i, t| {
+            seen.push(i);
+            Some(t)
+        });
+        let mut expected = Vec::new();
+        pop_then_test(&binary, &order, &ray, 0.0..f64::INFINITY, |i, t| {
+            expected.push(i);
+            Some(t)
+        });
+        assert_eq!(seen, expected, "the binary order");
+        seen.sort_unstable();
+        assert_eq!(seen, (0..200).collect::<Vec<_>>(), "every box once");
+        assert!(
+            bvh.info().depth >= MAX_DEPTH / 3,
+            "a deep tree: {:?}",
+            bvh.info()
+        );
     }
 
     /// The split of the sweep over every bin, empty ones included (before issue 12's fifth

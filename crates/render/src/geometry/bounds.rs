@@ -151,7 +151,7 @@ impl Bounds3 {
 
 /// `1 + 2γ(3)`: the enlargement of each slab's far distance (pbrt-v4 §6.8.2), as a constant
 /// (`γ(3) = 3u/(1 − 3u)`, `u = ε/2`; checked against [`gamma`] in the tests).
-const FAR_SCALE: f64 =
+pub(super) const FAR_SCALE: f64 =
     1.0 + 2.0 * (3.0 * (f64::EPSILON / 2.0) / (1.0 - 3.0 * (f64::EPSILON / 2.0)));
 
 /// A ray prepared for many slab tests ([`Bounds3::slab`]): its origin and reciprocal
@@ -160,10 +160,10 @@ const FAR_SCALE: f64 =
 /// the slab the origin lies on).
 #[derive(Clone, Copy, Debug)]
 pub struct SlabRay {
-    origin: DVec3,
-    inv: DVec3,
+    pub(super) origin: DVec3,
+    pub(super) inv: DVec3,
     /// `inv < 0` per axis: the slab's near plane is the box's `max` there.
-    neg: [bool; 3],
+    pub(super) neg: [bool; 3],
 }
 
 impl SlabRay {

@@ -2,10 +2,12 @@
 //! spawned rays off the surface they leave (pbrt-v4 §6.8, "Managing Rounding Error").
 
 mod bounds;
+mod bounds4;
 mod ray;
 mod transform;
 
 pub use bounds::{Bounds3, SlabRay};
+pub use bounds4::Bounds4;
 pub use ray::{Ray, offset_ray_origin};
 pub use transform::Transform;
 
