@@ -377,8 +377,9 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         // Halving: one rounded addition per level (the halving is exact). A jump at `λ`:
         // `(1 − λ)·x + λ·y`, with `1 − λ` exact (`λ` has few bits), is two products and a
         // sum, three roundings per level; its weights are convex, so the magnitude bound `M`
-        // still bounds every absolute-value weight (module docs), and each product adds at
-        // most one underflow unit, as a halving's does.
+        // still bounds every absolute-value weight (module docs) and earlier errors are not
+        // amplified, and its two products add at most two underflow units per level, the
+        // allowance per cut in `tiny` (a halving's product by 1/2 adds one).
         let (mid, per_level, (left_jump, right_jump)) = match cut {
             Cut::Half => {
                 for r in 1..=n {
