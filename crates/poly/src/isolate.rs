@@ -22,7 +22,9 @@ use crate::exact_oracle::{ExactOracle, SquareFreeSign};
 use crate::inclusion::{INCLUSION_MIN_DEGREE, Piece, real_pieces};
 use crate::multiprec::refine_wide;
 use crate::query::{Slack, with_scratch_poly};
-use crate::refine::{Refined, bisect_rational_to_f64, half_tol, refine_bracket, refine_exact_f64};
+use crate::refine::{
+    Refined, bisect_rational_to_f64, half_tol, probe_by, refine_bracket, refine_exact_f64,
+};
 use crate::root_error::RootError;
 use crate::root_interval::RootInterval;
 use crate::root_options::{IsolationMethod, RefineMethod, RootOptions, Tolerance};
@@ -1053,15 +1055,12 @@ fn refine_pointwise(
         let m = if m > lo && m < hi { m } else { lo.next_up() };
         match certified_sign(c, m, slack.at(m)) {
             0 => {
+                // The same probe as the `f64` refinement's (neighbouring doubles when
+                // `x_tol/2` is lost in rounding), each point with the slack at its radius.
+                let bracket = Bracket::new(lo, hi, b.s_lo);
                 let delta = half_tol(tol.on(lo, hi));
-                let (l, h) = (m - delta, m + delta);
-                let l_ok = l <= lo || certified_sign(c, l, slack.at(l)) == b.s_lo;
-                let h_ok = h >= hi || certified_sign(c, h, slack.at(h)) == -b.s_lo;
-                return if l_ok && h_ok {
-                    Ok(m)
-                } else {
-                    Err(RootError::SlackLimited { lo, hi })
-                };
+                return probe_by(bracket, m, delta, |x| certified_sign(c, x, slack.at(x)))
+                    .ok_or(RootError::SlackLimited { lo, hi });
             }
             s if s == b.s_lo => lo = m,
             _ => hi = m,
@@ -1718,5 +1717,23 @@ mod tests {
             Some(1.0),
             "infinite ends"
         );
+    }
+
+    /// Regression (left open by the full-precision work of session 7, which fixed the same
+    /// check in the `f64` and wide refinements): with `x_tol = 0` the point-by-point
+    /// refinement of a slack query that lands exactly on an exact `f64` root probed
+    /// `m ± x_tol/2`, the point itself, whose sign no slack can certify, and gave up as
+    /// `SlackLimited` on a root that its neighbouring doubles pin down.
+    #[test]
+    fn pointwise_refinement_at_zero_tolerance_probes_the_neighbours() {
+        let c = [-0.5, 1.0];
+        let tiny = |_: f64| 1e-300;
+        let got = refine_pointwise(
+            &c,
+            Bracket::new(0.0, 1.0, -1),
+            Tolerance::absolute(0.0),
+            Slack::new(&tiny),
+        );
+        assert_eq!(got, Ok(0.5), "the root 1/2, pinned by its neighbours");
     }
 }
