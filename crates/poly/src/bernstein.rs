@@ -815,9 +815,12 @@ enum Cut {
 /// Smallest `log₂ N` of a cluster jump (`N = 4`, as in ANewDsc).
 const MIN_JUMP: u8 = 2;
 
-/// How far above the error bound a jump keeps the polynomial at its cut (under the cluster
-/// model of [`BernsteinIsolator::jump_cut`]): a cut where the left part's coefficients would
-/// be undecided would only move the stuck node.
+/// A factor, relative to the node's absolute error bound `err`: a jump's cut is kept where the
+/// cluster model of [`BernsteinIsolator::jump_cut`] predicts `|q| ≥ JUMP_CLEARANCE·err`, and a
+/// run stops when the model puts `|q|` below it halfway to the cluster. A cut where the left
+/// part's coefficients would be undecided would only move the stuck node. It bounds a
+/// heuristic, not a result (the classification still certifies every sign), so it needs only
+/// margin for the model's error: 4 leaves two bits; 2 and 8 were not tried.
 const JUMP_CLEARANCE: f64 = 4.0;
 
 /// Largest `log₂ N`: the cut's grid, `1/(4N)`, stays within the bits a node's `u` can spare.
