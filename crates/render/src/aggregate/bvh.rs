@@ -47,6 +47,17 @@ const WIDTH: usize = 4;
 /// levels, and a node's children are all written before the first is taken back.
 const STACK: usize = (WIDTH - 1) * MAX_DEPTH + 1;
 
+/// Levels of nodes a tree may have for its traversal to use the short stack
+/// ([`SHORT_STACK`] entries) instead of the [`STACK`]-entry one. Safe Rust zeroes a stack
+/// array on every traversal: the full one, 772 bytes, was a `memset` call of ≈ 63 instructions
+/// per ray, 3 % of the 10-sphere flake (`docs/speed.md`, SPD "Eighth pass"); the SPD scenes'
+/// trees have at most 12 levels (balls-s5, 66 430 spheres), and a SAH tree needs ≈ 4¹⁵ items to
+/// pass 15.
+const SHORT_STACK_LEVELS: usize = 15;
+
+/// Entries of the short traversal stack: [`STACK`]'s bound for [`SHORT_STACK_LEVELS`] levels.
+const SHORT_STACK: usize = (WIDTH - 1) * SHORT_STACK_LEVELS + 1;
+
 /// Hierarchies over at most this many items are a flat list: one leaf holding the items in
 /// index order, whose box is not tested. Every user's items test their own box first (an
 /// implicit surface clips the ray to its bounding volume, a polygon to its padded box, a
@@ -374,7 +385,15 @@ impl Bvh {
             }
             mask
         };
-        let mut stack = [0u32; STACK];
+        // A tree of `depth − 1` levels of nodes needs `3·(depth − 1) + 1` entries (see `STACK`).
+        let mut short = [0u32; SHORT_STACK];
+        let mut long;
+        let stack: &mut [u32] = if self.info.depth <= SHORT_STACK_LEVELS + 1 {
+            &mut short
+        } else {
+            long = [0u32; STACK];
+            &mut long
+        };
         let mut top = 0;
         // Entries below `stale` were pushed before `t_max` last fell: retested when popped.
         let mut stale = 0;
@@ -1332,6 +1351,45 @@ mod tests {
             "a deep tree: {:?}",
             bvh.info()
         );
+    }
+
+    #[test]
+    fn trees_around_the_short_stack_limit_stay_within_their_stack() {
+        // The chain of boxes at x = 2^k again: a ray along x leaves three children on the
+        // stack at every level, the most there can be. Chains of every length from below the
+        // short stack's limit to above it: the deepest trees that use it must fit, and the
+        // next ones use the long stack.
+        let mut depths = Vec::new();
+        for n in 30..=60 {
+            let boxes: Vec<Bounds3> = (0..n).map(|k| unit_box(2f64.powi(k))).collect();
+            let bvh = Bvh::new(&boxes);
+            let (binary, order) = binary_tree(&boxes);
+            let ray = Ray::new(DVec3::new(-1.0, 0.5, 0.5), DVec3::X);
+            let mut seen = Vec::new();
+            bvh.traverse(&ray, 0.0..f64::INFINITY, &mut 0, |i, t| {
+                seen.push(i);
+                Some(t)
+            });
+            let mut expected = Vec::new();
+            pop_then_test(&binary, &order, &ray, 0.0..f64::INFINITY, |i, t| {
+                expected.push(i);
+                Some(t)
+            });
+            assert_eq!(seen, expected, "the binary order, {n} boxes");
+            assert_eq!(seen.len(), n as usize, "every box once, {n} boxes");
+            let mut blocked = 0;
+            assert!(bvh.any(&ray, 0.0..f64::INFINITY, &mut 0, |_| {
+                blocked += 1;
+                blocked == n
+            }));
+            depths.push(bvh.info().depth);
+        }
+        for depth in [SHORT_STACK_LEVELS + 1, SHORT_STACK_LEVELS + 2] {
+            assert!(
+                depths.contains(&depth),
+                "a tree of depth {depth}: {depths:?}"
+            );
+        }
     }
 
     /// The split of the sweep over every bin, empty ones included (before issue 12's fifth
