@@ -1353,41 +1353,78 @@ mod tests {
         );
     }
 
+    /// A tree of `levels` nodes in a chain that fills the traversal stack as far as it can:
+    /// every node's four children are the unit cube, lane 0 the next node (visited first) and
+    /// lanes 1–3 leaves of one item each, which stay on the stack while the chain goes down;
+    /// the last node has four leaves.
+    fn stack_filling_chain(levels: usize) -> Bvh {
+        let cube = unit_box(0.0);
+        let mut nodes = Vec::new();
+        let mut item = 0;
+        for level in 0..levels {
+            let mut node = Node {
+                bounds: Bounds4::EMPTY,
+                child: [0; WIDTH],
+                count: [0; WIDTH],
+                order: [packed([0, 1, 2, 3]); 8],
+            };
+            for lane in 0..WIDTH {
+                node.bounds.set(lane, &cube);
+                if lane == 0 && level + 1 < levels {
+                    node.child[0] = (level + 1) as u32;
+                } else {
+                    (node.child[lane], node.count[lane]) = (item, 1);
+                    item += 1;
+                }
+            }
+            nodes.push(node);
+        }
+        Bvh {
+            nodes,
+            order: (0..item).collect(),
+            info: BvhInfo {
+                items: item as usize,
+                nodes: levels,
+                depth: levels + 1,
+                build: Duration::ZERO,
+            },
+        }
+    }
+
     #[test]
-    fn trees_around_the_short_stack_limit_stay_within_their_stack() {
-        // The chain of boxes at x = 2^k again: a ray along x leaves three children on the
-        // stack at every level, the most there can be. Chains of every length from below the
-        // short stack's limit to above it: the deepest trees that use it must fit, and the
-        // next ones use the long stack.
-        let mut depths = Vec::new();
-        for n in 30..=60 {
-            let boxes: Vec<Bounds3> = (0..n).map(|k| unit_box(2f64.powi(k))).collect();
-            let bvh = Bvh::new(&boxes);
-            let (binary, order) = binary_tree(&boxes);
+    fn trees_filling_the_short_stack_stay_within_it() {
+        // At the short stack's limit the last node writes its four children at entries
+        // 3·(levels − 1) to 3·levels, the short stack's last; one level more takes the long
+        // stack. A stack one entry short panics here on an index out of bounds.
+        for levels in [
+            1,
+            2,
+            SHORT_STACK_LEVELS,
+            SHORT_STACK_LEVELS + 1,
+            MAX_DEPTH - 1,
+        ] {
+            let bvh = stack_filling_chain(levels);
+            let n = bvh.info().items as u32;
             let ray = Ray::new(DVec3::new(-1.0, 0.5, 0.5), DVec3::X);
             let mut seen = Vec::new();
             bvh.traverse(&ray, 0.0..f64::INFINITY, &mut 0, |i, t| {
                 seen.push(i);
                 Some(t)
             });
-            let mut expected = Vec::new();
-            pop_then_test(&binary, &order, &ray, 0.0..f64::INFINITY, |i, t| {
-                expected.push(i);
-                Some(t)
+            seen.sort_unstable();
+            assert_eq!(
+                seen,
+                (0..n).collect::<Vec<_>>(),
+                "every leaf once, {levels} levels"
+            );
+            let mut tested = 0;
+            let found = bvh.any(&ray, 0.0..f64::INFINITY, &mut 0, |_| {
+                tested += 1;
+                tested == n
             });
-            assert_eq!(seen, expected, "the binary order, {n} boxes");
-            assert_eq!(seen.len(), n as usize, "every box once, {n} boxes");
-            let mut blocked = 0;
-            assert!(bvh.any(&ray, 0.0..f64::INFINITY, &mut 0, |_| {
-                blocked += 1;
-                blocked == n
-            }));
-            depths.push(bvh.info().depth);
-        }
-        for depth in [SHORT_STACK_LEVELS + 1, SHORT_STACK_LEVELS + 2] {
             assert!(
-                depths.contains(&depth),
-                "a tree of depth {depth}: {depths:?}"
+                found,
+                "the any-hit traversal reaches the last leaf, {levels} levels"
             );
         }
     }
