@@ -494,8 +494,8 @@ pub fn write_atomically(
 /// by comparisons instead of a `powf` per channel.
 ///
 /// The code is the number of thresholds `≤ a`. A binary search over the 255 thresholds (eight
-/// steps a channel) was three quarters of the PNG encoding, which runs on one thread after the
-/// render (`docs/speed.md`, SPD "Eighth pass"); instead a table indexed by the top
+/// steps a channel) was most of the PNG encoding, which runs on one thread after the render
+/// (`docs/speed.md`, SPD "Eighth pass"); instead a table indexed by the top
 /// [`QUANTIZER_BUCKET_BITS`] bits of the `f32` gives that count at the least value of `a`'s
 /// bucket (for non-negative `f32`s the bit patterns are in the order of the values), and the
 /// count is finished by stepping over the thresholds between that value and `a`: the same
@@ -509,10 +509,10 @@ struct Quantizer8 {
 }
 
 /// The top bits of an `f32` that name its bucket in [`Quantizer8`]'s table: sign, exponent
-/// and seven mantissa bits, so a bucket spans a relative width of at most `2⁻⁷`, and the
-/// sRGB thresholds, which are at least that far apart in relative terms except for the first
-/// few codes, leave one or two to step over (a `1.0` bucket index of `0x3F80`: a table of 16 K
-/// bytes, filled in a fraction of a millisecond).
+/// and seven mantissa bits, so a normal bucket spans a relative width of at most `2⁻⁷`; the
+/// sRGB thresholds are farther apart than that (by 0.9 % of their value at the narrowest,
+/// near 1), so at most two are stepped over. `1.0`'s bucket is `0x3F80`: a table of 16 K
+/// bytes, one entry a bucket up to `1.0`.
 const QUANTIZER_BUCKET_BITS: u32 = 16;
 
 impl Quantizer8 {

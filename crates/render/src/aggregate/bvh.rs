@@ -49,10 +49,10 @@ const STACK: usize = (WIDTH - 1) * MAX_DEPTH + 1;
 
 /// Levels of nodes a tree may have for its traversal to use the short stack
 /// ([`SHORT_STACK`] entries) instead of the [`STACK`]-entry one. Safe Rust zeroes a stack
-/// array on every traversal: the full one, 772 bytes, was a `memset` call of ≈ 63 instructions
-/// per ray, 3 % of the 10-sphere flake (`docs/speed.md`, SPD "Eighth pass"); the SPD scenes'
-/// trees have at most 12 levels (balls-s5, 66 430 spheres), and a SAH tree needs ≈ 4¹⁵ items to
-/// pass 15.
+/// array on every traversal, and zeroing the full one was a `memset` call per ray, a
+/// measurable share of the small SPD scenes (`paper-notes/bvh.md` §3, eighth pass); their
+/// trees, the 66 430-sphere one included, are well within this depth, and deeper trees keep
+/// the full stack.
 const SHORT_STACK_LEVELS: usize = 15;
 
 /// Entries of the short traversal stack: [`STACK`]'s bound for [`SHORT_STACK_LEVELS`] levels.

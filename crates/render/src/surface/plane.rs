@@ -107,8 +107,8 @@ impl ImplicitFn for Plane {
     /// the generic evaluation's products with their factors `1` left out (multiplying by 1
     /// is exact), summed in the same order, so the same values (test
     /// `eval_grad_is_the_generic_evaluation`): the normal and the hit point's error bound are
-    /// unchanged. The generic one zeroed and filled six power tables for every shaded hit of
-    /// a polygon or triangle, ≈ 540 instructions (`docs/speed.md`, SPD "Eighth pass").
+    /// unchanged. The generic one zeroes and fills six power tables for every shaded hit of a
+    /// polygon or triangle (`paper-notes/bvh.md` §3, eighth pass).
     fn eval_grad(&self, p: DVec3) -> Eval3 {
         let mut out = Eval3::default();
         for t in self.poly.terms() {
