@@ -491,11 +491,29 @@ pub fn write_atomically(
 /// Quantises encoded channel values to 8 bits through the decision thresholds of the
 /// transfer function: code `k` is chosen for linear `a` when
 /// `decode((k − ½)/255) ≤ a < decode((k + ½)/255)`, which is `round(255·encode(a))` computed
-/// with 8 comparisons instead of a `powf` per channel.
+/// by comparisons instead of a `powf` per channel.
+///
+/// The code is the number of thresholds `≤ a`. A binary search over the 255 thresholds (eight
+/// steps a channel) was most of the PNG encoding, which runs on one thread after the render
+/// (`docs/speed.md`, SPD "Eighth pass"); instead a table indexed by the top
+/// [`QUANTIZER_BUCKET_BITS`] bits of the `f32` gives that count at the least value of `a`'s
+/// bucket (for non-negative `f32`s the bit patterns are in the order of the values), and the
+/// count is finished by stepping over the thresholds between that value and `a`: the same
+/// count, so the same code (test `bucketed_quantizer_is_the_binary_search`).
 struct Quantizer8 {
     /// `thresholds[k]` is the smallest linear value that encodes to code `k + 1`.
     thresholds: [f64; 255],
+    /// `start[b]`: how many thresholds are `≤` the least non-negative `f32` of bucket `b` (its
+    /// bits `b << (32 − QUANTIZER_BUCKET_BITS)`), for the buckets up to that of `1.0`.
+    start: Vec<u8>,
 }
+
+/// The top bits of an `f32` that name its bucket in [`Quantizer8`]'s table: sign, exponent
+/// and seven mantissa bits, so a normal bucket spans a relative width of at most `2⁻⁷`; the
+/// sRGB thresholds are farther apart than that (by 0.9 % of their value at the narrowest,
+/// near 1), so at most two are stepped over. `1.0`'s bucket is `0x3F80`: a table of 16 K
+/// bytes, one entry a bucket up to `1.0`.
+const QUANTIZER_BUCKET_BITS: u32 = 16;
 
 impl Quantizer8 {
     fn new(gamma: Gamma) -> Self {
@@ -503,15 +521,35 @@ impl Quantizer8 {
         for (k, t) in thresholds.iter_mut().enumerate() {
             *t = gamma.decode((k as f64 + 0.5) / 255.0);
         }
-        Quantizer8 { thresholds }
+        let shift = 32 - QUANTIZER_BUCKET_BITS;
+        let last = 1.0f32.to_bits() >> shift;
+        let start = (0..=last)
+            .map(|b| {
+                let least = f64::from(f32::from_bits(b << shift));
+                thresholds.partition_point(|&t| t <= least) as u8
+            })
+            .collect();
+        Quantizer8 { thresholds, start }
     }
 
     fn quantize(&self, a: f32) -> u8 {
+        let bits = a.to_bits();
         let a = f64::from(a);
         if a.is_nan() {
             return 0;
         }
-        self.thresholds.partition_point(|&t| t <= a) as u8
+        // A negative `a` (sign bit set) starts from no threshold; one above `1.0` from the
+        // last bucket's count, which is still at most its own.
+        let mut code = if bits >> 31 == 1 {
+            0
+        } else {
+            let bucket = (bits >> (32 - QUANTIZER_BUCKET_BITS)) as usize;
+            usize::from(self.start[bucket.min(self.start.len() - 1)])
+        };
+        while code < self.thresholds.len() && self.thresholds[code] <= a {
+            code += 1;
+        }
+        code as u8
     }
 }
 
@@ -540,10 +578,13 @@ pub fn encode_png(
     let mut bytes = Vec::with_capacity(film.pixels.len() * channels * usize::from(opts.bits / 8));
     if opts.bits == 8 {
         let q = Quantizer8::new(opts.gamma);
-        for px in &film.pixels {
-            bytes.extend([q.quantize(px[0]), q.quantize(px[1]), q.quantize(px[2])]);
+        bytes.resize(film.pixels.len() * channels, 0);
+        for (px, out) in film.pixels.iter().zip(bytes.chunks_exact_mut(channels)) {
+            for c in 0..3 {
+                out[c] = q.quantize(px[c]);
+            }
             if opts.alpha {
-                bytes.push((f64::from(px[3]).clamp(0.0, 1.0) * 255.0).round() as u8);
+                out[3] = (f64::from(px[3]).clamp(0.0, 1.0) * 255.0).round() as u8;
             }
         }
     } else {
@@ -665,6 +706,50 @@ mod tests {
             assert_eq!(q.quantize(-1.0), 0, "clamped below");
             assert_eq!(q.quantize(7.0), 255, "clamped above");
             assert_eq!(q.quantize(f32::NAN), 0, "NaN is black");
+        }
+    }
+
+    #[test]
+    fn bucketed_quantizer_is_the_binary_search() {
+        // Every code boundary's neighbouring f32s, every bucket's edges, and a sweep of
+        // [0, 1.5], for sRGB and two power laws: the count of thresholds ≤ a, as the binary
+        // search over all 255 found it.
+        for gamma in [Gamma::Srgb, Gamma::Power(2.2), Gamma::Power(0.45)] {
+            let q = Quantizer8::new(gamma);
+            let search = |a: f32| {
+                if a.is_nan() {
+                    0
+                } else {
+                    q.thresholds.partition_point(|&t| t <= f64::from(a)) as u8
+                }
+            };
+            let mut values: Vec<f32> = Vec::new();
+            for &t in &q.thresholds {
+                let t = t as f32;
+                values.extend([t, t.next_down(), t.next_up()]);
+            }
+            for b in 0..=0x3F81u32 {
+                let least = f32::from_bits(b << 16);
+                values.extend([least, least.next_down(), f32::from_bits((b << 16) | 0xFFFF)]);
+            }
+            values.extend((0..=150_000).map(|k| k as f32 * 1e-5));
+            values.extend([
+                0.0,
+                -0.0,
+                -1e-30,
+                -1.0,
+                1.0,
+                7.0,
+                f32::MIN_POSITIVE,
+                f32::from_bits(1),
+                f32::MAX,
+                f32::INFINITY,
+                f32::NEG_INFINITY,
+                f32::NAN,
+            ]);
+            for a in values {
+                assert_eq!(q.quantize(a), search(a), "{gamma:?} at {a:e}");
+            }
         }
     }
 

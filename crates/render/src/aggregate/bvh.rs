@@ -47,6 +47,17 @@ const WIDTH: usize = 4;
 /// levels, and a node's children are all written before the first is taken back.
 const STACK: usize = (WIDTH - 1) * MAX_DEPTH + 1;
 
+/// Levels of nodes a tree may have for its traversal to use the short stack
+/// ([`SHORT_STACK`] entries) instead of the [`STACK`]-entry one. Safe Rust zeroes a stack
+/// array on every traversal, and zeroing the full one was a `memset` call per ray, a
+/// measurable share of the small SPD scenes (`paper-notes/bvh.md` §3, eighth pass); their
+/// trees, the 66 430-sphere one included, are well within this depth, and deeper trees keep
+/// the full stack.
+const SHORT_STACK_LEVELS: usize = 15;
+
+/// Entries of the short traversal stack: [`STACK`]'s bound for [`SHORT_STACK_LEVELS`] levels.
+const SHORT_STACK: usize = (WIDTH - 1) * SHORT_STACK_LEVELS + 1;
+
 /// Hierarchies over at most this many items are a flat list: one leaf holding the items in
 /// index order, whose box is not tested. Every user's items test their own box first (an
 /// implicit surface clips the ray to its bounding volume, a polygon to its padded box, a
@@ -374,7 +385,15 @@ impl Bvh {
             }
             mask
         };
-        let mut stack = [0u32; STACK];
+        // A tree of `depth − 1` levels of nodes needs `3·(depth − 1) + 1` entries (see `STACK`).
+        let mut short = [0u32; SHORT_STACK];
+        let mut long;
+        let stack: &mut [u32] = if self.info.depth <= SHORT_STACK_LEVELS + 1 {
+            &mut short
+        } else {
+            long = [0u32; STACK];
+            &mut long
+        };
         let mut top = 0;
         // Entries below `stale` were pushed before `t_max` last fell: retested when popped.
         let mut stale = 0;
@@ -1332,6 +1351,82 @@ mod tests {
             "a deep tree: {:?}",
             bvh.info()
         );
+    }
+
+    /// A tree of `levels` nodes in a chain that fills the traversal stack as far as it can:
+    /// every node's four children are the unit cube, lane 0 the next node (visited first) and
+    /// lanes 1–3 leaves of one item each, which stay on the stack while the chain goes down;
+    /// the last node has four leaves.
+    fn stack_filling_chain(levels: usize) -> Bvh {
+        let cube = unit_box(0.0);
+        let mut nodes = Vec::new();
+        let mut item = 0;
+        for level in 0..levels {
+            let mut node = Node {
+                bounds: Bounds4::EMPTY,
+                child: [0; WIDTH],
+                count: [0; WIDTH],
+                order: [packed([0, 1, 2, 3]); 8],
+            };
+            for lane in 0..WIDTH {
+                node.bounds.set(lane, &cube);
+                if lane == 0 && level + 1 < levels {
+                    node.child[0] = (level + 1) as u32;
+                } else {
+                    (node.child[lane], node.count[lane]) = (item, 1);
+                    item += 1;
+                }
+            }
+            nodes.push(node);
+        }
+        Bvh {
+            nodes,
+            order: (0..item).collect(),
+            info: BvhInfo {
+                items: item as usize,
+                nodes: levels,
+                depth: levels + 1,
+                build: Duration::ZERO,
+            },
+        }
+    }
+
+    #[test]
+    fn trees_filling_the_short_stack_stay_within_it() {
+        // At the short stack's limit the last node writes its four children at entries
+        // 3·(levels − 1) to 3·levels, the short stack's last; one level more takes the long
+        // stack. A stack one entry short panics here on an index out of bounds.
+        for levels in [
+            1,
+            2,
+            SHORT_STACK_LEVELS,
+            SHORT_STACK_LEVELS + 1,
+            MAX_DEPTH - 1,
+        ] {
+            let bvh = stack_filling_chain(levels);
+            let n = bvh.info().items as u32;
+            let ray = Ray::new(DVec3::new(-1.0, 0.5, 0.5), DVec3::X);
+            let mut seen = Vec::new();
+            bvh.traverse(&ray, 0.0..f64::INFINITY, &mut 0, |i, t| {
+                seen.push(i);
+                Some(t)
+            });
+            seen.sort_unstable();
+            assert_eq!(
+                seen,
+                (0..n).collect::<Vec<_>>(),
+                "every leaf once, {levels} levels"
+            );
+            let mut tested = 0;
+            let found = bvh.any(&ray, 0.0..f64::INFINITY, &mut 0, |_| {
+                tested += 1;
+                tested == n
+            });
+            assert!(
+                found,
+                "the any-hit traversal reaches the last leaf, {levels} levels"
+            );
+        }
     }
 
     /// The split of the sweep over every bin, empty ones included (before issue 12's fifth

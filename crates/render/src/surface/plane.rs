@@ -13,7 +13,7 @@ use glam::{DVec2, DVec3};
 use super::SurfaceKind;
 use super::implicit::ImplicitFn;
 use crate::geometry::Bounds3;
-use crate::trivariate::{Poly3, RestrictScratch};
+use crate::trivariate::{Eval3, Poly3, RestrictScratch};
 
 /// A two-sided plane, traced through the shared implicit path (degree 1).
 #[derive(Clone, Debug)]
@@ -99,5 +99,82 @@ impl ImplicitFn for Plane {
     fn uv(&self, p: DVec3) -> Option<DVec2> {
         let v = p - self.origin;
         Some(DVec2::new(v.dot(self.u_axis), v.dot(self.v_axis)))
+    }
+
+    /// [`Poly3::eval_grad`] of the stored polynomial without its power tables: the terms in
+    /// their stored order (constant, `z`, `y`, `x`, the zero ones dropped), each adding
+    /// `c·p_k` to `F`, `|c|·|p_k|` to its scale and `c`, `|c|` to the gradient's component —
+    /// the generic evaluation's products with their factors `1` left out (multiplying by 1
+    /// is exact), summed in the same order, so the same values (test
+    /// `eval_grad_is_the_generic_evaluation`): the normal and the hit point's error bound are
+    /// unchanged. The generic one zeroes and fills six power tables for every shaded hit of a
+    /// polygon or triangle (`paper-notes/bvh.md` §3, eighth pass).
+    fn eval_grad(&self, p: DVec3) -> Eval3 {
+        let mut out = Eval3::default();
+        for t in self.poly.terms() {
+            let c = t.coeff;
+            match t.exps.iter().position(|&e| e == 1) {
+                Some(k) => {
+                    out.f += c * p[k];
+                    out.f_abs += c.abs() * p[k].abs();
+                    out.grad[k] += c;
+                    out.grad_abs[k] += c.abs();
+                }
+                None => {
+                    out.f += c;
+                    out.f_abs += c.abs();
+                }
+            }
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use rand::{Rng, SeedableRng};
+
+    use super::*;
+
+    #[test]
+    fn eval_grad_is_the_generic_evaluation() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12);
+        let mut r = |s: f64| rng.gen_range(-s..s);
+        for k in 0..3000i32 {
+            let origin = DVec3::new(r(100.0), r(100.0), r(100.0));
+            let mut normal = DVec3::new(r(1.0), r(1.0), r(1.0));
+            // Axis planes (SPD floors, boxes' faces) drop terms; a plane through the origin
+            // drops the constant.
+            if k % 3 == 0 {
+                normal[(k % 4 % 3) as usize] = 0.0;
+            }
+            if k % 5 == 0 {
+                normal = [DVec3::X, DVec3::NEG_Y, DVec3::Z][(k % 3) as usize];
+            }
+            let origin = if k % 7 == 0 { DVec3::ZERO } else { origin };
+            let plane = Plane::new(origin, normal);
+            let p = origin + DVec3::new(r(10.0), r(10.0), r(10.0)) * 10f64.powi(k % 9 - 4);
+            let (fast, full) = (plane.eval_grad(p), plane.poly().eval_grad(p));
+            assert_eq!(fast, full, "plane {origin} n {normal} at {p}");
+            // `==` takes -0 for +0: the signs must match too.
+            let bits = |e: Eval3| {
+                [
+                    e.f,
+                    e.f_abs,
+                    e.grad.x,
+                    e.grad.y,
+                    e.grad.z,
+                    e.grad_abs.x,
+                    e.grad_abs.y,
+                    e.grad_abs.z,
+                ]
+                .map(f64::to_bits)
+            };
+            assert_eq!(
+                bits(fast),
+                bits(full),
+                "plane {origin} n {normal} at {p}, bit for bit"
+            );
+        }
     }
 }
