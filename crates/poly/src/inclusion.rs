@@ -40,6 +40,7 @@ use crate::eval_bound::{
     certified_sign, comp_horner_bounded, horner_bounded, horner_derivative_and_bound,
 };
 use crate::int_poly::IntPoly;
+use crate::rescale::{ldexp, with_rescaled};
 use crate::scalar::rat_from_f64;
 use crate::univariate::{ETA, Poly, UNIT_ROUNDOFF};
 
@@ -400,8 +401,35 @@ fn starting_points(c: &[f64], s: &mut Scratch) -> bool {
 /// iteration, and an estimate of the rounding error of `p(z)`: Horner's bound
 /// `γ(2n)·Σ|cᵢ||z|ⁱ` (Higham eq. 5.3), doubled (in the index for complex products). Below it
 /// the iteration cannot improve `z` in `f64` (the noise floor).
+///
+/// Where any of the three overflows, they come from the rescaled polynomial
+/// (`p(z) = 2^s·q(w)`, `z = 2^k·w`; `rescale.rs`) all divided by the same `2^s`: the ratios
+/// the iteration uses (`p/p'`, `|p|` against the noise, `|p|/|p'|`) are unchanged.
 #[inline]
 fn horner_c(c: &[f64], z: C) -> (C, C, f64) {
+    let (p, dp, noise) = horner_c_plain(c, z);
+    if p.is_finite() && dp.is_finite() && noise.is_finite() {
+        return (p, dp, noise);
+    }
+    horner_c_rescaled(c, z)
+}
+
+/// [`horner_c`] on the rescaled polynomial, each value divided by `2^s` (`p'` also by the
+/// `2^-k` of the chain rule); non-finite values when it cannot be rescaled.
+#[cold]
+#[inline(never)]
+fn horner_c_rescaled(c: &[f64], z: C) -> (C, C, f64) {
+    with_rescaled(c, z.re, z.im, |q, wr, wi, r| {
+        let (p, dp, noise) = horner_c_plain(q, C::new(wr, wi));
+        let dp = C::new(ldexp(dp.re, -r.k), ldexp(dp.im, -r.k));
+        (p, dp, noise)
+    })
+    .unwrap_or((C::new(f64::NAN, 0.0), C::new(f64::NAN, 0.0), f64::NAN))
+}
+
+/// [`horner_c`] without the rescaling.
+#[inline]
+fn horner_c_plain(c: &[f64], z: C) -> (C, C, f64) {
     if z.im == 0.0 {
         let (v, d, err) = horner_derivative_and_bound(c, z.re, z.re);
         return (C::new(v, 0.0), C::new(d, 0.0), 2.0 * err);
@@ -432,7 +460,31 @@ fn horner_c(c: &[f64], z: C) -> (C, C, f64) {
 /// rounded up), `(1 + 8ε)` the roundings of the bound, and `8η·Σ|z|ⁱ` the underflow of the
 /// four real products per step (each off by at most `η/2` absolutely, carried forward by
 /// powers of `|z|`). `|v|` is bounded by `|Re v| + |Im v|`.
-fn abs_p_upper(c: &[f64], z: C) -> f64 {
+///
+/// Returned as `(b, e)`, the bound being `b·2^e`: where the bound on `p` itself overflows
+/// (`e = 0` otherwise), it is the same bound on the rescaled `q` at `w` (`p(z) = 2^e·q(w)`,
+/// `z = 2^k·w`; `rescale.rs`) plus `η·Σ|w|ⁱ` for the rounding of `q`'s coefficients.
+fn abs_p_upper(c: &[f64], z: C) -> (f64, i64) {
+    let b = abs_p_upper_plain(c, z, 0.0);
+    if b.is_finite() {
+        return (b, 0);
+    }
+    abs_p_upper_rescaled(c, z)
+}
+
+/// [`abs_p_upper`] of the rescaled polynomial; `(∞, 0)` when it cannot be rescaled.
+#[cold]
+#[inline(never)]
+fn abs_p_upper_rescaled(c: &[f64], z: C) -> (f64, i64) {
+    with_rescaled(c, z.re, z.im, |q, wr, wi, r| {
+        (abs_p_upper_plain(q, C::new(wr, wi), 1.0), r.s)
+    })
+    .unwrap_or((f64::INFINITY, 0))
+}
+
+/// [`abs_p_upper`] without the rescaling, with `coeff_eta·η·Σ|z|ⁱ` added for coefficients
+/// known only to within `coeff_eta·η` each.
+fn abs_p_upper_plain(c: &[f64], z: C, coeff_eta: f64) -> f64 {
     const EPS: f64 = f64::EPSILON;
     if z.im == 0.0 {
         let (v, err) = horner_bounded(c, z.re);
@@ -441,7 +493,11 @@ fn abs_p_upper(c: &[f64], z: C) -> f64 {
         } else {
             comp_horner_bounded(c, z.re)
         };
-        return (v.abs() + err) * (1.0 + 2.0 * EPS);
+        // Σ|z|ⁱ ≤ n + 1 for the rescaled |z| < 1 (the only caller with coeff_eta > 0); the
+        // product is exact in units of η.
+        debug_assert!(coeff_eta == 0.0 || z.re.abs() < 1.0, "rescaled point");
+        let coeff_err = coeff_eta * ETA * c.len() as f64;
+        return (v.abs() + err + coeff_err) * (1.0 + 4.0 * EPS);
     }
     let az = z.abs() * (1.0 + 2.0 * EPS);
     let (mut v, mut s, mut w) = (C::default(), 0.0f64, 0.0f64);
@@ -451,7 +507,7 @@ fn abs_p_upper(c: &[f64], z: C) -> f64 {
         s = s * az + ci.abs();
         w = w * az + 1.0;
     }
-    let err = gamma_ratio(6 * c.len()) * s * (1.0 + 8.0 * EPS) + 8.0 * ETA * w;
+    let err = gamma_ratio(6 * c.len()) * s * (1.0 + 8.0 * EPS) + (8.0 + coeff_eta) * ETA * w;
     (v.re.abs() + v.im.abs() + err) * (1.0 + 4.0 * EPS)
 }
 
@@ -546,12 +602,11 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
                 continue;
             }
             let x = s.z[i].re;
-            let (v, err) = comp_horner_bounded(c, x);
+            let (v, err, d) = polish_values(c, x);
             if v.abs() <= err {
                 s.done[i] = true;
                 continue;
             }
-            let (_, d, _) = horner_derivative_and_bound(c, x, x);
             let newton = v / d;
             let sum = aberth_sum(C::new(x, 0.0), &s.z[..i], &s.z[i + 1..]).re;
             let next = x - newton / (1.0 - newton * sum);
@@ -570,6 +625,32 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
             break;
         }
     }
+}
+
+/// The compensated value of `p(x)` with its error bound, and `p'(x)` by plain Horner, for
+/// the polish (heuristic: the stop test and Newton's step). Where they overflow, all three
+/// come from the rescaled polynomial divided by the same `2^s` (`rescale.rs`; `p'` also by
+/// the `2^-k` of the chain rule), which leaves the step and the stop test unchanged.
+#[inline]
+fn polish_values(c: &[f64], x: f64) -> (f64, f64, f64) {
+    let (v, err) = comp_horner_bounded(c, x);
+    let (_, d, _) = horner_derivative_and_bound(c, x, x);
+    if err.is_finite() && d.is_finite() {
+        return (v, err, d);
+    }
+    polish_values_rescaled(c, x)
+}
+
+/// [`polish_values`] on the rescaled polynomial; NaN when it cannot be rescaled.
+#[cold]
+#[inline(never)]
+fn polish_values_rescaled(c: &[f64], x: f64) -> (f64, f64, f64) {
+    with_rescaled(c, x, 0.0, |q, y, _, r| {
+        let (v, err) = comp_horner_bounded(q, y);
+        let (_, d, _) = horner_derivative_and_bound(q, y, y);
+        (v, err + ETA * q.len() as f64, ldexp(d, -r.k))
+    })
+    .unwrap_or((f64::NAN, f64::NAN, f64::NAN))
 }
 
 /// Aberth's sum `Σ_j 1/(z − zⱼ)` over the other approximations (`before` and `after` `zᵢ`),
@@ -606,15 +687,43 @@ fn pow2(e: i64) -> f64 {
     f64::from_bits(((e + 1023) as u64) << 52)
 }
 
-/// The computed `|a − b|²` of two centres, or `None` when it is below [`MIN_DISTANCE`] or
-/// not finite. The true value is at least this times `(1 + u)^-4`: each coordinate
-/// difference rounds once (`|d| ≥ |d̂|/(1 + u)`), the squares and their sum once each; an
-/// underflowing square errs by at most `η/2 ≤ 2^-174·MIN_DISTANCE` absolutely, within the
-/// margins taken by the callers.
-fn dist_sq(a: C, b: C) -> Option<f64> {
-    let d = a.sub(b);
+/// The computed `|a − b|²` of two centres as `m·2^e` (`m ∈ [1, 2)`), or `None` when it is
+/// below [`MIN_DISTANCE`] or a difference is not finite. The true value is at least this
+/// times `(1 + u)^-4`: each coordinate difference rounds once (`|d| ≥ |d̂|/(1 + u)`), the
+/// squares and their sum once each; an underflowing square errs by at most
+/// `η/2 ≤ 2^-174·MIN_DISTANCE` absolutely, within the margins taken by the callers. Centres
+/// more than `2^511` apart (roots spread over more than `10¹⁵⁴`, whose squared distance
+/// overflows) are compared through [`scaled_diff`], which keeps that bound.
+fn dist_sq(a: C, b: C) -> Option<(f64, i64)> {
+    let (d, e) = scaled_diff(a, b)?;
     let q = d.re * d.re + d.im * d.im;
-    (q >= MIN_DISTANCE && q.is_finite()).then_some(q)
+    if e == 0 && q < MIN_DISTANCE {
+        return None;
+    }
+    let (m, qe) = split(q);
+    Some((m, qe + 2 * e))
+}
+
+/// Exponent above which [`scaled_diff`] scales a difference down: `2^500`, so that its
+/// square (below `2^1002` after the scaling by `2^-600`) is finite.
+const BIG_DIFFERENCE: f64 = f64::from_bits((1023 + 500) << 52);
+
+/// `a − b` as `d·2^e`, `d` the computed difference (`e = 0`), or, when a coordinate of it
+/// exceeds [`BIG_DIFFERENCE`], that difference times `2^-600` (`e = 600`): exact for the larger
+/// coordinate (then above `2^-100`); the other one may underflow to a value smaller in
+/// magnitude, whose square is then below `2^-1022`, less than `u·2^-200` against the larger
+/// square, so the computed sum of squares is still at least the true one times
+/// `(1 + u)^-4` up to the margin that [`dist_sq`]'s callers take. `None` when a difference is
+/// not finite.
+fn scaled_diff(a: C, b: C) -> Option<(C, i64)> {
+    let d = a.sub(b);
+    if !d.is_finite() {
+        return None;
+    }
+    if d.re.abs().max(d.im.abs()) <= BIG_DIFFERENCE {
+        return Some((d, 0));
+    }
+    Some((C::new(ldexp(d.re, -600), ldexp(d.im, -600)), 600))
 }
 
 /// Step 2: upper bounds `rᵢ ≥ n·|p(zᵢ)|/(|aₙ|·∏_{j≠i}|zᵢ − zⱼ|)`. `false` when the centres
@@ -637,20 +746,20 @@ fn certify(c: &[f64], s: &mut Scratch) -> bool {
     let margin = 1.0 + (4 * n + 16) as f64 * f64::EPSILON;
     for i in 0..n {
         let zi = s.z[i];
-        let p_up = abs_p_upper(c, zi);
+        let (p_up, p_scale) = abs_p_upper(c, zi);
         if !p_up.is_finite() {
             return false;
         }
         let (p_m, p_e) = split(p_up.max(f64::MIN_POSITIVE));
+        let p_e = p_e + p_scale;
         let (mut prod, mut prod_e) = (1.0f64, 0i64);
         for (j, &zj) in s.z.iter().enumerate() {
             if j == i {
                 continue;
             }
-            let Some(q) = dist_sq(zi, zj) else {
+            let Some((q_m, q_e)) = dist_sq(zi, zj) else {
                 return false;
             };
-            let (q_m, q_e) = split(q);
             let (m, e) = split(prod * q_m);
             prod = m;
             prod_e += e + q_e;
@@ -678,14 +787,25 @@ fn certify(c: &[f64], s: &mut Scratch) -> bool {
 /// `|a − b| > ra + rb` with the distance bounded below ([`dist_sq`], `(1 − 4ε)` covering its
 /// `(1 + u)^-4`) and the sum of radii above (two roundings of the sum and square, each
 /// covered by `(1 + 2ε)`).
+///
+/// Centres more than `2^500` apart are compared at the scale of [`scaled_diff`], the radii
+/// scaled by the same `2^-600` and rounded up (by `η`, which covers an underflowing
+/// quotient; one more rounding of the sum is within the `(1 + 2ε)`).
 fn discs_apart(a: C, ra: f64, b: C, rb: f64) -> bool {
-    let d = a.sub(b);
+    let Some((d, e)) = scaled_diff(a, b) else {
+        return false;
+    };
     let q = d.re * d.re + d.im * d.im;
     // Too close to tell, or too far to compare in `f64` (an infinite `q` says nothing
     // about `(ra + rb)²`, which may overflow too): not certainly apart.
-    if !(q >= MIN_DISTANCE && q.is_finite()) {
+    if !((e > 0 || q >= MIN_DISTANCE) && q.is_finite()) {
         return false;
     }
+    let (ra, rb) = if e == 0 {
+        (ra, rb)
+    } else {
+        (ldexp(ra, -e) + ETA, ldexp(rb, -e) + ETA)
+    };
     let t = (ra + rb) * (1.0 + 2.0 * f64::EPSILON);
     q * (1.0 - 4.0 * f64::EPSILON) > t * t * (1.0 + 2.0 * f64::EPSILON)
 }
@@ -1194,5 +1314,128 @@ mod tests {
             !real_pieces(&[1.0, f64::NAN, 1.0], -1.0, 1.0, |_| {}),
             "NaN is refused"
         );
+    }
+
+    /// The real roots of the stored `p` on `(−∞, ∞)` at `x_tol = 0`, checked against the
+    /// exact oracle: as many as exact isolation finds ([`crate::testutil::stored_roots`]),
+    /// each near the oracle's and a faithful rounding of a root (the exact
+    /// sign of `p` changes between it and one of its neighbouring `f64`, or is 0 there).
+    fn full_precision_roots(p: &Poly<f64>) -> (Vec<f64>, RootStats) {
+        let mut stats = RootStats::default();
+        let got = p
+            .real_roots_with(
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                &RootOptions::new(0.0),
+                &mut stats,
+            )
+            .expect("valid query");
+        // Every real root is finite: (−MAX, MAX] holds them all.
+        let want = crate::testutil::stored_roots(p, -f64::MAX, f64::MAX);
+        assert_eq!(got.len(), want.len(), "got {got:?}, exact {want:?}");
+        let q = p.to_rat().expect("finite");
+        let sign = |x: f64| {
+            let v = q.eval(&rat_from_f64(x).expect("finite"));
+            i8::from(v > Rat::default()) - i8::from(v < Rat::default())
+        };
+        for (&g, &w) in got.iter().zip(&want) {
+            // The oracle is refined to 2^-80 absolutely (`stored_roots`).
+            assert!(
+                (g - w).abs() <= (4.0 * f64::EPSILON * w.abs()).max(2f64.powi(-79)),
+                "got {g:e}, exact {w:e}: {got:?}"
+            );
+            let s = sign(g);
+            assert!(
+                s == 0 || sign(g.next_down()) == -s || sign(g.next_up()) == -s,
+                "{g:e} is not a faithful rounding of a root of {p:?}"
+            );
+        }
+        (got, stats)
+    }
+
+    #[test]
+    fn quartic_with_roots_up_to_1e154_is_decided_without_wide_tiers() {
+        // Orellana–De Michele's (x − 1)(x − 10)(x − 10¹⁵²)(x − 10¹⁵⁴), coefficients by
+        // Vieta's formulas in f64 as they build it: Σ|cᵢ||x|ⁱ overflows beyond |x| ≈ 10⁷⁷
+        // (and at 10 already), so every sign, the iteration and the certificate use the
+        // rescaled polynomial. Before: the discs overflowed, and the whole range was
+        // isolated and refined with 256-bit signs.
+        let (x1, x2, x3, x4) = (1.0, 10.0, 1e152, 1e154);
+        let p = Poly::new(vec![
+            x1 * x2 * x3 * x4,
+            -x1 * x2 * (x3 + x4) - x3 * x4 * (x1 + x2),
+            x1 * (x2 + x3) + x2 * (x3 + x4) + x4 * (x1 + x3),
+            -(x1 + x2 + x3 + x4),
+            1.0,
+        ]);
+        let (roots, stats) = full_precision_roots(&p);
+        assert_eq!(roots.len(), 4, "{roots:?}");
+        assert_eq!(
+            (
+                stats.inclusion_decided,
+                stats.inclusion_undecided,
+                stats.adaptive_pieces,
+                stats.adaptive_refines,
+                stats.multiprecision_pieces,
+                stats.exact_fallbacks,
+                stats.refine_fallbacks,
+            ),
+            (1, 0, 0, 0, 0, 0, 0),
+            "decided by the discs, refined in f64: {stats:?}"
+        );
+    }
+
+    #[test]
+    fn roots_spread_over_more_than_1e200_are_decided_and_exact() {
+        // Random signs and decimal exponents, spread ≥ 10²⁰⁰, with the products of the large
+        // (and of the small) roots kept inside the f64 range so that the stored
+        // coefficients are finite and non-zero.
+        let mut rng = ChaCha8Rng::seed_from_u64(200);
+        let mut cases = 0;
+        while cases < 12 {
+            let degree = rng.gen_range(3..=7);
+            let exps: Vec<i32> = (0..degree).map(|_| rng.gen_range(-150..=250)).collect();
+            let (lo, hi) = (exps.iter().min().unwrap(), exps.iter().max().unwrap());
+            let up: i32 = exps.iter().filter(|&&e| e > 0).sum();
+            let down: i32 = exps.iter().filter(|&&e| e < 0).sum();
+            let mut sorted = exps.clone();
+            sorted.sort_unstable();
+            if hi - lo < 200 || up > 290 || down < -290 || sorted.windows(2).any(|w| w[0] == w[1])
+            {
+                continue;
+            }
+            cases += 1;
+            let roots: Vec<f64> = exps
+                .iter()
+                .map(|&e| {
+                    let m: f64 = rng.gen_range(1.0..9.0);
+                    let r = m * 10f64.powi(e);
+                    if rng.r#gen::<bool>() { r } else { -r }
+                })
+                .collect();
+            let p = Poly::from_roots(&roots);
+            let (got, stats) = full_precision_roots(&p);
+            assert_eq!(got.len(), degree, "{roots:?}: {got:?}");
+            assert_eq!(
+                (stats.exact_fallbacks, stats.refine_fallbacks),
+                (0, 0),
+                "{roots:?}: {stats:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn coefficients_that_underflow_when_rescaled_keep_exact_answers() {
+        // At the scale of the large roots the rescaled constant (and lower) coefficients
+        // fall below the normal range or to 0; their rounding is counted in the bound.
+        for c in [
+            vec![1e-300, -1e-150, 3e-10, -1e100, 1.0],
+            vec![-7e-320, 1e-200, -2.0, 5e150, 1e-100],
+            vec![1e300, -1e300, 1e-300, 0.0, -1e-250, 1e-300],
+            vec![2.5e-310, 0.0, -1e5, 0.0, 0.0, 0.0, 1e-290],
+        ] {
+            let p = Poly::new(c);
+            full_precision_roots(&p);
+        }
     }
 }

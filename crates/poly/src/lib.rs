@@ -73,6 +73,7 @@ mod near_zero;
 mod ops;
 mod query;
 mod refine;
+mod rescale;
 mod root_error;
 mod root_interval;
 mod root_options;
