@@ -5,7 +5,10 @@
 //! & Louvet, "Algorithms for accurate, validated and fast polynomial evaluation", Japan J.
 //! Indust. Appl. Math. 26, 2009, Theorem 3.1). [`certified_sign`] tries the first and only
 //! pays for the second when the first cannot decide, which near a simple root shrinks the
-//! band of undecidable points by a factor of about 2^53.
+//! band of undecidable points by a factor of about 2^53. Where `Σ|cᵢ||x|ⁱ` overflows (so
+//! both bounds are infinite), both tiers run on the polynomial rescaled by powers of two
+//! (`rescale.rs`; `paper-notes/isolation.md`, "Extended exponent range"), which cannot
+//! overflow.
 
 use crate::rescale::{ldexp, with_rescaled};
 use crate::univariate::{Bounded, ETA, Poly, UNIT_ROUNDOFF, gamma};
@@ -155,7 +158,8 @@ fn sign_if_certain(v: f64, err: f64) -> i8 {
 
 /// The certified sign of `p(x)` (−1 or 1), or 0 when neither tier can certify it (then
 /// `p(x)` is zero or within about `2^-100` of zero relative to `Σ|cᵢ||x|^i`, or within
-/// `slack` of zero).
+/// `slack` of zero). Where `Σ|cᵢ||x|^i` overflows, the tiers run on the rescaled polynomial
+/// ([`rescaled_value`]), with the same guarantee relative to the largest `|cᵢ||x|^i`.
 ///
 /// `slack` widens every error bound by a caller's bound on `|p_true(x) − p(x)|` (0 for the
 /// stored polynomial itself; see [`Slack`](crate::query::Slack)): a sign certified with it is

@@ -202,8 +202,8 @@ struct Scratch {
     /// Per cluster (indexed by its root in `parent`): not tried yet (`None`), or the exact
     /// multiple root certified for it (`Some(Some(r))`) or not (`Some(None)`).
     cluster: Vec<Option<Option<f64>>>,
-    /// Indices of the Newton polygon's vertices.
-    hull: Vec<usize>,
+    /// Indices of the Newton polygon's vertices, with their `log₂|aᵢ|`.
+    hull: Vec<(usize, f64)>,
     /// The coefficients of `p(g + y)` for the starting points ([`starting_points`]).
     shifted: Vec<f64>,
 }
@@ -320,23 +320,22 @@ pub(crate) fn real_pieces(c: &[f64], lo: f64, hi: f64, mut emit: impl FnMut(Piec
 /// A heuristic: only the certificate's radii matter for correctness. `false` when a circle's
 /// radius is not a positive finite number or `a₀ = 0` (fewer than `n` points). The circles
 /// are centred at `centre`: `c` holds the coefficients of `p(centre + y)`.
-fn initial_points(c: &[f64], centre: f64, hull: &mut Vec<usize>, z: &mut Vec<C>) -> bool {
+fn initial_points(c: &[f64], centre: f64, hull: &mut Vec<(usize, f64)>, z: &mut Vec<C>) -> bool {
     let n = c.len() - 1;
-    let log = |i: usize| c[i].abs().log2();
-    // Andrew's monotone chain, upper part, over the non-zero coefficients.
+    // Andrew's monotone chain, upper part, over the non-zero coefficients; each vertex keeps
+    // its `log₂|aᵢ|` (one logarithm per coefficient).
     hull.clear();
     for i in (0..=n).filter(|&i| c[i] != 0.0) {
-        let li = log(i);
-        while let [.., a, b] = hull[..] {
+        let li = c[i].abs().log2();
+        while let [.., (a, la), (b, lb)] = hull[..] {
             // Drop b when it lies on or below the segment from a to i.
-            let (la, lb) = (log(a), log(b));
             if (b - a) as f64 * (li - la) - (i - a) as f64 * (lb - la) >= 0.0 {
                 hull.pop();
             } else {
                 break;
             }
         }
-        hull.push(i);
+        hull.push((i, li));
     }
     // Offset angle σ = 0.7 (Bini 1996): keeps the starting points off the real axis, where
     // conjugate-symmetric starts would never leave it.
@@ -344,9 +343,9 @@ fn initial_points(c: &[f64], centre: f64, hull: &mut Vec<usize>, z: &mut Vec<C>)
     let tau = std::f64::consts::TAU;
     z.clear();
     for e in hull.windows(2) {
-        let (i, j) = (e[0], e[1]);
+        let ((i, li), (j, lj)) = (e[0], e[1]);
         let k = j - i;
-        let radius = ((log(i) - log(j)) / k as f64).exp2();
+        let radius = ((li - lj) / k as f64).exp2();
         if !(radius.is_finite() && radius > 0.0) {
             return false;
         }
@@ -1400,8 +1399,7 @@ mod tests {
             let down: i32 = exps.iter().filter(|&&e| e < 0).sum();
             let mut sorted = exps.clone();
             sorted.sort_unstable();
-            if hi - lo < 200 || up > 290 || down < -290 || sorted.windows(2).any(|w| w[0] == w[1])
-            {
+            if hi - lo < 200 || up > 290 || down < -290 || sorted.windows(2).any(|w| w[0] == w[1]) {
                 continue;
             }
             cases += 1;

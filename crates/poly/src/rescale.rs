@@ -16,6 +16,7 @@
 use std::cell::Cell;
 
 /// The binary exponent of a finite non-zero `x`: `2^e ≤ |x| < 2^{e+1}` (subnormals too).
+#[inline]
 pub(crate) fn exponent(x: f64) -> i64 {
     let bits = x.abs().to_bits();
     let biased = (bits >> 52) as i64;
@@ -40,7 +41,19 @@ fn pow2(e: i64) -> f64 {
 /// `x·2^e`, rounded once: exact when the result is normal (or `x` is 0), within `η/2` when
 /// it is subnormal, `0` (an error below `η = 2^-1074`) when it is smaller still, and `±∞`
 /// when it overflows. Any finite `x` and any `e`.
+#[inline]
 pub(crate) fn ldexp(x: f64, e: i64) -> f64 {
+    // A normal `x` with a normal result: add `e` to the exponent field (exact).
+    let bits = x.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i64;
+    if biased != 0 && biased != 0x7ff && (1..=2046).contains(&(biased + e)) {
+        return f64::from_bits(bits.wrapping_add((e << 52) as u64));
+    }
+    ldexp_general(x, e)
+}
+
+/// [`ldexp`] where the input or the result is not normal.
+fn ldexp_general(x: f64, e: i64) -> f64 {
     if x == 0.0 || !x.is_finite() {
         return x;
     }
@@ -73,9 +86,14 @@ pub(crate) struct Rescaling {
     pub(crate) s: i64,
 }
 
+/// Most coefficients rescaled into a stack buffer; longer polynomials use a per-thread
+/// buffer (the quartics and the renderer's degrees fit on the stack, which costs no
+/// thread-local access per evaluation).
+const STACK_LEN: usize = 32;
+
 thread_local! {
-    /// The rescaled coefficients, reused: used only where plain `f64` evaluation overflows,
-    /// never on the renderer's per-ray polynomials, so it allocates at most once per thread.
+    /// Reused buffer for polynomials longer than [`STACK_LEN`]: used only where plain `f64`
+    /// evaluation overflows, so it allocates at most once per thread and degree.
     static RESCALED: Cell<Vec<f64>> = const { Cell::new(Vec::new()) };
 }
 
@@ -107,22 +125,34 @@ pub(crate) fn with_rescaled<R>(
     if ldexp(yr, k) != re || ldexp(yi, k) != im {
         return None;
     }
-    let s = c
-        .iter()
-        .enumerate()
-        .filter(|&(_, &ci)| ci != 0.0)
-        .map(|(i, &ci)| exponent(ci) + k * i as i64)
-        .max()?;
+    let mut s = i64::MIN;
+    for (i, &ci) in c.iter().enumerate() {
+        if ci != 0.0 {
+            s = s.max(exponent(ci) + k * i as i64);
+        }
+    }
+    if s == i64::MIN {
+        return None;
+    }
+    let r = Rescaling { k, s };
+    let fill = |q: &mut [f64]| {
+        for (i, (qi, &ci)) in q.iter_mut().zip(c).enumerate() {
+            *qi = ldexp(ci, k * i as i64 - s);
+        }
+    };
+    if c.len() <= STACK_LEN {
+        let mut buf = [0.0; STACK_LEN];
+        let q = &mut buf[..c.len()];
+        fill(q);
+        return Some(f(q, yr, yi, r));
+    }
     let mut q = RESCALED.take();
     q.clear();
-    q.extend(
-        c.iter()
-            .enumerate()
-            .map(|(i, &ci)| ldexp(ci, k * i as i64 - s)),
-    );
-    let r = f(&q, yr, yi, Rescaling { k, s });
+    q.resize(c.len(), 0.0);
+    fill(&mut q);
+    let out = f(&q, yr, yi, r);
     RESCALED.set(q);
-    Some(r)
+    Some(out)
 }
 
 #[cfg(test)]
@@ -134,23 +164,55 @@ mod tests {
 
     #[test]
     fn exponent_brackets_the_magnitude() {
-        for x in [1.0, 1.5, 2.0, 1e-300, 1e300, f64::MAX, f64::MIN_POSITIVE, ETA, 3.0 * ETA] {
+        for x in [
+            1.0,
+            1.5,
+            2.0,
+            1e-300,
+            1e300,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            ETA,
+            3.0 * ETA,
+        ] {
             let e = exponent(x);
             let lo = Rat::from_float(2.0).unwrap().pow(e as i32);
             let v = Rat::from_float(x).unwrap();
-            assert!(lo <= v && v < &lo * Rat::from_integer(2.into()), "{x:e}: {e}");
+            assert!(
+                lo <= v && v < &lo * Rat::from_integer(2.into()),
+                "{x:e}: {e}"
+            );
             assert_eq!(exponent(-x), e, "sign ignored");
+        }
+    }
+
+    #[test]
+    fn ldexp_fast_path_agrees_with_the_general_one() {
+        for x in [1.0, -1.5, 3e-300, -7e300, f64::MIN_POSITIVE, f64::MAX, 0.1] {
+            for e in [
+                -2100, -1100, -1074, -1000, -52, -1, 0, 1, 52, 600, 1023, 2000,
+            ] {
+                let (a, b) = (ldexp(x, e), ldexp_general(x, e));
+                assert_eq!(a.to_bits(), b.to_bits(), "{x:e}·2^{e}");
+            }
         }
     }
 
     #[test]
     fn ldexp_is_exact_in_range_and_rounds_once_below() {
         assert_eq!(ldexp(3.0, 1000), 3.0 * 2f64.powi(1000), "normal result");
-        assert_eq!(ldexp(1e300, -2000), 1e300 * 2f64.powi(-1000) * 2f64.powi(-1000));
+        assert_eq!(
+            ldexp(1e300, -2000),
+            1e300 * 2f64.powi(-1000) * 2f64.powi(-1000)
+        );
         assert_eq!(ldexp(ETA, 1074), 1.0, "a subnormal scaled up");
         assert_eq!(ldexp(1.0, -1074), ETA, "the smallest subnormal");
         assert_eq!(ldexp(1.0, -1076), 0.0, "below it: 0");
-        assert_eq!(ldexp(-1.0, 1024), f64::NEG_INFINITY, "overflow keeps the sign");
+        assert_eq!(
+            ldexp(-1.0, 1024),
+            f64::NEG_INFINITY,
+            "overflow keeps the sign"
+        );
         // 1.75·2^-1074 rounds once to 2η (double rounding through 2^-1073 would give the same
         // here; the error is at most η/2 either way).
         assert_eq!(ldexp(1.75, -1074), 2.0 * ETA);
