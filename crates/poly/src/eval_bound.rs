@@ -350,7 +350,7 @@ mod tests {
         // often fall below the normal range. Every certified sign must be the exact one.
         use rand::{Rng, SeedableRng};
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
-        let mut magnitude = |rng: &mut rand_chacha::ChaCha8Rng, lo: i32, hi: i32| {
+        let magnitude = |rng: &mut rand_chacha::ChaCha8Rng, lo: i32, hi: i32| {
             let v = rng.gen_range(1.0..10.0) * 10f64.powi(rng.gen_range(lo..=hi));
             if rng.r#gen::<bool>() { v } else { -v }
         };

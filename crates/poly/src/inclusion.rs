@@ -396,39 +396,27 @@ fn starting_points(c: &[f64], s: &mut Scratch) -> bool {
     initial_points(c, 0.0, &mut s.hull, &mut s.z)
 }
 
-/// `p(z)`, `p'(z)` by Horner's rule (complex, or real for a real `z`), plain values for the
-/// iteration, and an estimate of the rounding error of `p(z)`: Horner's bound
-/// `γ(2n)·Σ|cᵢ||z|ⁱ` (Higham eq. 5.3), doubled (in the index for complex products). Below it
-/// the iteration cannot improve `z` in `f64` (the noise floor).
-///
-/// Where any of the three overflows, they come from the rescaled polynomial
-/// (`p(z) = 2^s·q(w)`, `z = 2^k·w`; `rescale.rs`) all divided by the same `2^s`: the ratios
-/// the iteration uses (`p/p'`, `|p|` against the noise, `|p|/|p'|`) are unchanged.
-#[inline]
-fn horner_c(c: &[f64], z: C) -> (C, C, f64) {
-    let (p, dp, noise) = horner_c_plain(c, z);
-    if p.is_finite() && dp.is_finite() && noise.is_finite() {
-        return (p, dp, noise);
-    }
-    horner_c_rescaled(c, z)
-}
-
-/// [`horner_c`] on the rescaled polynomial, each value divided by `2^s` (`p'` also by the
-/// `2^-k` of the chain rule); non-finite values when it cannot be rescaled.
+/// [`horner_c`] where its values overflow: the same three on the rescaled polynomial
+/// (`p(z) = 2^s·q(w)`, `z = 2^k·w`; `rescale.rs`), each divided by `2^s` (`p'` also by the
+/// `2^-k` of the chain rule), so the ratios the iteration uses (`p/p'`, `|p|` against the
+/// noise, `|p|/|p'|`) are unchanged; non-finite values when it cannot be rescaled.
 #[cold]
 #[inline(never)]
 fn horner_c_rescaled(c: &[f64], z: C) -> (C, C, f64) {
     with_rescaled(c, z.re, z.im, |q, wr, wi, r| {
-        let (p, dp, noise) = horner_c_plain(q, C::new(wr, wi));
+        let (p, dp, noise) = horner_c(q, C::new(wr, wi));
         let dp = C::new(ldexp(dp.re, -r.k), ldexp(dp.im, -r.k));
         (p, dp, noise)
     })
     .unwrap_or((C::new(f64::NAN, 0.0), C::new(f64::NAN, 0.0), f64::NAN))
 }
 
-/// [`horner_c`] without the rescaling.
+/// `p(z)`, `p'(z)` by Horner's rule (complex, or real for a real `z`), plain values for the
+/// iteration, and an estimate of the rounding error of `p(z)`: Horner's bound
+/// `γ(2n)·Σ|cᵢ||z|ⁱ` (Higham eq. 5.3), doubled (in the index for complex products). Below it
+/// the iteration cannot improve `z` in `f64` (the noise floor).
 #[inline]
-fn horner_c_plain(c: &[f64], z: C) -> (C, C, f64) {
+fn horner_c(c: &[f64], z: C) -> (C, C, f64) {
     if z.im == 0.0 {
         let (v, d, err) = horner_derivative_and_bound(c, z.re, z.re);
         return (C::new(v, 0.0), C::new(d, 0.0), 2.0 * err);
@@ -463,8 +451,9 @@ fn horner_c_plain(c: &[f64], z: C) -> (C, C, f64) {
 /// Returned as `(b, e)`, the bound being `b·2^e`: where the bound on `p` itself overflows
 /// (`e = 0` otherwise), it is the same bound on the rescaled `q` at `w` (`p(z) = 2^e·q(w)`,
 /// `z = 2^k·w`; `rescale.rs`) plus `η·Σ|w|ⁱ` for the rounding of `q`'s coefficients.
+#[inline]
 fn abs_p_upper(c: &[f64], z: C) -> (f64, i64) {
-    let b = abs_p_upper_plain(c, z, 0.0);
+    let b = abs_p_upper_plain::<false>(c, z);
     if b.is_finite() {
         return (b, 0);
     }
@@ -476,15 +465,17 @@ fn abs_p_upper(c: &[f64], z: C) -> (f64, i64) {
 #[inline(never)]
 fn abs_p_upper_rescaled(c: &[f64], z: C) -> (f64, i64) {
     with_rescaled(c, z.re, z.im, |q, wr, wi, r| {
-        (abs_p_upper_plain(q, C::new(wr, wi), 1.0), r.s)
+        (abs_p_upper_plain::<true>(q, C::new(wr, wi)), r.s)
     })
     .unwrap_or((f64::INFINITY, 0))
 }
 
-/// [`abs_p_upper`] without the rescaling, with `coeff_eta·η·Σ|z|ⁱ` added for coefficients
-/// known only to within `coeff_eta·η` each.
-fn abs_p_upper_plain(c: &[f64], z: C, coeff_eta: f64) -> f64 {
+/// [`abs_p_upper`] without the rescaling; for `RESCALED` coefficients (each known only to
+/// within `η`) with `η·Σ|z|ⁱ` added.
+#[inline(always)]
+fn abs_p_upper_plain<const RESCALED: bool>(c: &[f64], z: C) -> f64 {
     const EPS: f64 = f64::EPSILON;
+    let coeff_eta = if RESCALED { 1.0 } else { 0.0 };
     if z.im == 0.0 {
         let (v, err) = horner_bounded(c, z.re);
         let (v, err) = if v.abs() > COMPENSATE_BELOW * err {
@@ -494,9 +485,10 @@ fn abs_p_upper_plain(c: &[f64], z: C, coeff_eta: f64) -> f64 {
         };
         // Σ|z|ⁱ ≤ n + 1 for the rescaled |z| < 1 (the only caller with coeff_eta > 0); the
         // product is exact in units of η.
-        debug_assert!(coeff_eta == 0.0 || z.re.abs() < 1.0, "rescaled point");
+        debug_assert!(!RESCALED || z.re.abs() < 1.0, "rescaled point");
         let coeff_err = coeff_eta * ETA * c.len() as f64;
-        return (v.abs() + err + coeff_err) * (1.0 + 4.0 * EPS);
+        // Two additions (one when coeff_err = 0), each within (1 + u): (1 + 2ε) covers both.
+        return (v.abs() + err + coeff_err) * (1.0 + 2.0 * EPS);
     }
     let az = z.abs() * (1.0 + 2.0 * EPS);
     let (mut v, mut s, mut w) = (C::default(), 0.0f64, 0.0f64);
@@ -537,9 +529,12 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
                 continue;
             }
             let zi = s.z[i];
-            let (p, dp, noise) = horner_c(c, zi);
+            let (mut p, mut dp, mut noise) = horner_c(c, zi);
             if !(p.is_finite() && dp.is_finite() && noise.is_finite()) {
-                return false;
+                (p, dp, noise) = horner_c_rescaled(c, zi);
+                if !(p.is_finite() && dp.is_finite() && noise.is_finite()) {
+                    return false;
+                }
             }
             if p.abs_fast() <= noise {
                 s.done[i] = true;
@@ -571,7 +566,10 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
             // radius `n·max(|p|, noise)/|p'|`: a real root's approximation ends there; a
             // non-real root so close to the axis is caught by the certificate (its disc and
             // its conjugate's overlap, or the two real approximations coincide).
-            let (p, dp, noise) = horner_c(c, z);
+            let (mut p, mut dp, mut noise) = horner_c(c, z);
+            if !(p.is_finite() && dp.is_finite() && noise.is_finite()) {
+                (p, dp, noise) = horner_c_rescaled(c, z);
+            }
             let reach = n as f64 * p.abs_fast().max(noise) / dp.abs_fast();
             if z.im.abs() <= reach {
                 s.z[i] = C::new(z.re, 0.0);
@@ -601,7 +599,17 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
                 continue;
             }
             let x = s.z[i].re;
-            let (v, err, d) = polish_values(c, x);
+            let (v, err) = comp_horner_bounded(c, x);
+            if v.abs() <= err && err.is_finite() {
+                s.done[i] = true;
+                continue;
+            }
+            let (_, d, _) = horner_derivative_and_bound(c, x, x);
+            let (v, err, d) = if err.is_finite() && d.is_finite() {
+                (v, err, d)
+            } else {
+                polish_values_rescaled(c, x)
+            };
             if v.abs() <= err {
                 s.done[i] = true;
                 continue;
@@ -626,21 +634,10 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
     }
 }
 
-/// The compensated value of `p(x)` with its error bound, and `p'(x)` by plain Horner, for
-/// the polish (heuristic: the stop test and Newton's step). Where they overflow, all three
-/// come from the rescaled polynomial divided by the same `2^s` (`rescale.rs`; `p'` also by
-/// the `2^-k` of the chain rule), which leaves the step and the stop test unchanged.
-#[inline]
-fn polish_values(c: &[f64], x: f64) -> (f64, f64, f64) {
-    let (v, err) = comp_horner_bounded(c, x);
-    let (_, d, _) = horner_derivative_and_bound(c, x, x);
-    if err.is_finite() && d.is_finite() {
-        return (v, err, d);
-    }
-    polish_values_rescaled(c, x)
-}
-
-/// [`polish_values`] on the rescaled polynomial; NaN when it cannot be rescaled.
+/// For the polish where `p(x)` or `p'(x)` overflows: the compensated value of the rescaled
+/// polynomial with its error bound, and its derivative, all divided by the same `2^s`
+/// (`rescale.rs`; `p'` also by the `2^-k` of the chain rule), which leaves Newton's step and
+/// the stop test unchanged (a heuristic); NaN when it cannot be rescaled.
 #[cold]
 #[inline(never)]
 fn polish_values_rescaled(c: &[f64], x: f64) -> (f64, f64, f64) {
@@ -693,10 +690,25 @@ fn pow2(e: i64) -> f64 {
 /// `η/2 ≤ 2^-174·MIN_DISTANCE` absolutely, within the margins taken by the callers. Centres
 /// more than `2^511` apart (roots spread over more than `10¹⁵⁴`, whose squared distance
 /// overflows) are compared through [`scaled_diff`], which keeps that bound.
+#[inline]
 fn dist_sq(a: C, b: C) -> Option<(f64, i64)> {
+    let d = a.sub(b);
+    let q = d.re * d.re + d.im * d.im;
+    if q.is_finite() {
+        return (q >= MIN_DISTANCE).then(|| split(q));
+    }
+    dist_sq_far(a, b)
+}
+
+/// [`dist_sq`] of centres whose squared distance overflowed (a coordinate difference above
+/// `2^511`), through [`scaled_diff`].
+#[cold]
+#[inline(never)]
+fn dist_sq_far(a: C, b: C) -> Option<(f64, i64)> {
     let (d, e) = scaled_diff(a, b)?;
     let q = d.re * d.re + d.im * d.im;
-    if e == 0 && q < MIN_DISTANCE {
+    if e == 0 {
+        // Not finite after all: a non-finite centre.
         return None;
     }
     let (m, qe) = split(q);
@@ -787,24 +799,38 @@ fn certify(c: &[f64], s: &mut Scratch) -> bool {
 /// `(1 + u)^-4`) and the sum of radii above (two roundings of the sum and square, each
 /// covered by `(1 + 2ε)`).
 ///
-/// Centres more than `2^500` apart are compared at the scale of [`scaled_diff`], the radii
+/// Centres whose squared distance overflows are compared at the scale of [`scaled_diff`], the radii
 /// scaled by the same `2^-600` and rounded up (by `η`, which covers an underflowing
 /// quotient; one more rounding of the sum is within the `(1 + 2ε)`).
+#[inline]
 fn discs_apart(a: C, ra: f64, b: C, rb: f64) -> bool {
+    let d = a.sub(b);
+    let q = d.re * d.re + d.im * d.im;
+    if !q.is_finite() {
+        return discs_apart_far(a, ra, b, rb);
+    }
+    // Too close to tell: not certainly apart.
+    if q < MIN_DISTANCE {
+        return false;
+    }
+    let t = (ra + rb) * (1.0 + 2.0 * f64::EPSILON);
+    q * (1.0 - 4.0 * f64::EPSILON) > t * t * (1.0 + 2.0 * f64::EPSILON)
+}
+
+/// [`discs_apart`] for centres whose squared distance overflowed, at the scale of
+/// [`scaled_diff`].
+#[cold]
+#[inline(never)]
+fn discs_apart_far(a: C, ra: f64, b: C, rb: f64) -> bool {
     let Some((d, e)) = scaled_diff(a, b) else {
         return false;
     };
     let q = d.re * d.re + d.im * d.im;
-    // Too close to tell, or too far to compare in `f64` (an infinite `q` says nothing
-    // about `(ra + rb)²`, which may overflow too): not certainly apart.
-    if !((e > 0 || q >= MIN_DISTANCE) && q.is_finite()) {
+    // A non-finite centre, or a distance still too large: not certainly apart.
+    if e == 0 || !q.is_finite() {
         return false;
     }
-    let (ra, rb) = if e == 0 {
-        (ra, rb)
-    } else {
-        (ldexp(ra, -e) + ETA, ldexp(rb, -e) + ETA)
-    };
+    let (ra, rb) = (ldexp(ra, -e) + ETA, ldexp(rb, -e) + ETA);
     let t = (ra + rb) * (1.0 + 2.0 * f64::EPSILON);
     q * (1.0 - 4.0 * f64::EPSILON) > t * t * (1.0 + 2.0 * f64::EPSILON)
 }
