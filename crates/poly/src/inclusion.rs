@@ -1263,15 +1263,7 @@ mod tests {
     #[test]
     fn exact_quadruple_root_is_certified_by_its_cluster() {
         let p = Poly::from_roots(&[1000.0; 4]);
-        let mut stats = RootStats::default();
-        let roots = p
-            .real_roots_with(
-                f64::NEG_INFINITY,
-                f64::INFINITY,
-                &RootOptions::new(0.0),
-                &mut stats,
-            )
-            .expect("valid query");
+        let (roots, stats) = all_roots_full_precision(&p);
         assert_eq!(roots, vec![1000.0], "{stats:?}");
         assert_eq!(
             (
@@ -1341,13 +1333,10 @@ mod tests {
         );
     }
 
-    /// The real roots of the stored `p` on `(−∞, ∞)` at `x_tol = 0`, checked against the
-    /// exact oracle: as many as exact isolation finds ([`crate::testutil::stored_roots`]),
-    /// each near the oracle's and a faithful rounding of a root (the exact
-    /// sign of `p` changes between it and one of its neighbouring `f64`, or is 0 there).
-    fn full_precision_roots(p: &Poly<f64>) -> (Vec<f64>, RootStats) {
+    /// The real roots of `p` on `(−∞, ∞)` at `x_tol = 0`, with the query's statistics.
+    fn all_roots_full_precision(p: &Poly<f64>) -> (Vec<f64>, RootStats) {
         let mut stats = RootStats::default();
-        let got = p
+        let roots = p
             .real_roots_with(
                 f64::NEG_INFINITY,
                 f64::INFINITY,
@@ -1355,6 +1344,15 @@ mod tests {
                 &mut stats,
             )
             .expect("valid query");
+        (roots, stats)
+    }
+
+    /// The real roots of the stored `p` on `(−∞, ∞)` at `x_tol = 0`, checked against the
+    /// exact oracle: as many as exact isolation finds ([`crate::testutil::stored_roots`]),
+    /// each near the oracle's and a faithful rounding of a root (the exact
+    /// sign of `p` changes between it and one of its neighbouring `f64`, or is 0 there).
+    fn full_precision_roots(p: &Poly<f64>) -> (Vec<f64>, RootStats) {
+        let (got, stats) = all_roots_full_precision(p);
         // Every real root is finite: (−MAX, MAX] holds them all.
         let want = crate::testutil::stored_roots(p, -f64::MAX, f64::MAX);
         assert_eq!(got.len(), want.len(), "got {got:?}, exact {want:?}");
