@@ -190,10 +190,12 @@ pub(crate) fn certified_value_pair(
     let second_tier = |at: f64, v: f64, err: f64| match sign_if_certain(v, err + slack) {
         // Within the slack no tier can decide.
         0 if slack > 0.0 && v.abs() <= slack => (v, 0),
-        0 if !err.is_finite() => rescaled_value(c, at, slack),
         0 => {
             let (v, err) = comp_horner_bounded(c, at);
-            (v, sign_if_certain(v, err + slack))
+            match sign_if_certain(v, err + slack) {
+                0 if !err.is_finite() => rescaled_value(c, at, slack),
+                s => (v, s),
+            }
         }
         s => (v, s),
     };
@@ -208,10 +210,13 @@ pub(crate) fn certified_value(c: &[f64], x: f64, slack: f64) -> (f64, i8) {
     match sign_if_certain(v, err + slack) {
         // Within the slack no tier can decide.
         0 if slack > 0.0 && v.abs() <= slack => (v, 0),
-        0 if !err.is_finite() => rescaled_value(c, x, slack),
         0 => {
             let (v, err) = comp_horner_bounded(c, x);
-            (v, sign_if_certain(v, err + slack))
+            match sign_if_certain(v, err + slack) {
+                // Σ|cᵢ||x|ⁱ overflowed (both bounds are infinite): the rescaled tiers.
+                0 if !err.is_finite() => rescaled_value(c, x, slack),
+                s => (v, s),
+            }
         }
         s => (v, s),
     }
