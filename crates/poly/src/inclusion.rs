@@ -522,6 +522,8 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
     let n = s.z.len();
     s.done.clear();
     s.done.resize(n, false);
+    // Whether some approximation is beyond `FAR_COORDINATE` (kept up to date as they move).
+    let mut far = s.z.iter().any(|&z| is_far(z));
     for _ in 0..MAX_ABERTH_SWEEPS {
         let mut moving = false;
         for i in 0..n {
@@ -542,13 +544,14 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
             }
             // Aberth's correction w = N/(1 − N·Σ 1/(zᵢ − zⱼ)), N = p/p' (Bini 1996, eq. 6).
             let newton = p.div(dp);
-            let sum = aberth_sum(zi, &s.z[..i], &s.z[i + 1..]);
+            let sum = aberth_sum(zi, &s.z[..i], &s.z[i + 1..], far);
             let w = newton.div(C::new(1.0, 0.0).sub(newton.mul(sum)));
             if !w.is_finite() {
                 return false;
             }
             let next = zi.sub(w);
             s.z[i] = next;
+            far |= is_far(next);
             if w.abs_fast() <= 2.0 * f64::EPSILON * next.abs_fast() {
                 s.done[i] = true;
             } else {
@@ -592,6 +595,7 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
     for i in 0..n {
         s.done[i] = s.z[i].im != 0.0;
     }
+    let mut far = s.z.iter().any(|&z| is_far(z));
     for _ in 0..MAX_POLISH_STEPS {
         let mut moving = false;
         for i in 0..n {
@@ -615,13 +619,14 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
                 continue;
             }
             let newton = v / d;
-            let sum = aberth_sum(C::new(x, 0.0), &s.z[..i], &s.z[i + 1..]).re;
+            let sum = aberth_sum(C::new(x, 0.0), &s.z[..i], &s.z[i + 1..], far).re;
             let next = x - newton / (1.0 - newton * sum);
             if !next.is_finite() {
                 s.done[i] = true;
                 continue;
             }
             s.z[i] = C::new(next, 0.0);
+            far |= next.abs() > FAR_COORDINATE;
             if next == x {
                 s.done[i] = true;
             } else {
@@ -654,7 +659,16 @@ fn polish_values_rescaled(c: &[f64], x: f64) -> (f64, f64, f64) {
 /// where some `|d|²` over- or underflowed the sum is not finite, or (for `|d|² > 2^1000`)
 /// a term that is negligible anyway came out 0, and a non-finite sum is recomputed with
 /// [`C::recip`] (Smith's rule where needed).
-fn aberth_sum(z: C, before: &[C], after: &[C]) -> C {
+///
+/// `far` says that some approximation has a coordinate beyond [`FAR_COORDINATE`]: then a
+/// `|d|²` may overflow and its term come out 0, which is not negligible when `z` is as
+/// large as `d` (a cubic with roots near `10⁻⁶`, `10⁵⁹` and `10²⁰¹` saw the sum of its
+/// largest approximation vanish, and Aberth's step became Newton's, which halved that
+/// approximation towards 0 for 80 sweeps); the sum is then taken with [`C::recip`] alone.
+fn aberth_sum(z: C, before: &[C], after: &[C], far: bool) -> C {
+    if far {
+        return aberth_sum_recip(z, before, after);
+    }
     let mut sum = C::default();
     for &zj in before.iter().chain(after) {
         let d = z.sub(zj);
@@ -662,12 +676,30 @@ fn aberth_sum(z: C, before: &[C], after: &[C]) -> C {
         sum = C::new(sum.re + d.re * r, sum.im - d.im * r);
     }
     if !sum.is_finite() {
-        sum = C::default();
-        for &zj in before.iter().chain(after) {
-            sum = sum.add(z.sub(zj).recip());
-        }
+        sum = aberth_sum_recip(z, before, after);
     }
     sum
+}
+
+/// [`aberth_sum`] with a reciprocal ([`C::recip`], Smith's rule where `|d|²` leaves the
+/// normal range) per term.
+#[cold]
+#[inline(never)]
+fn aberth_sum_recip(z: C, before: &[C], after: &[C]) -> C {
+    let mut sum = C::default();
+    for &zj in before.iter().chain(after) {
+        sum = sum.add(z.sub(zj).recip());
+    }
+    sum
+}
+
+/// A coordinate of an approximation beyond which [`aberth_sum`]'s shortcut may overflow:
+/// `2^500`. Below it every coordinate difference is at most `2^501` and its square finite.
+const FAR_COORDINATE: f64 = f64::from_bits((1023 + 500) << 52);
+
+/// Whether `z` has a coordinate beyond [`FAR_COORDINATE`].
+fn is_far(z: C) -> bool {
+    z.re.abs().max(z.im.abs()) > FAR_COORDINATE
 }
 
 /// A positive normal number as `m·2^e`, `m ∈ [1, 2)` (exact), for products of many factors
@@ -1438,12 +1470,39 @@ mod tests {
             let p = Poly::from_roots(&roots);
             let (got, stats) = full_precision_roots(&p);
             assert_eq!(got.len(), degree, "{roots:?}: {got:?}");
+            // Simple roots far apart: the discs decide, and the refinement ends in f64.
             assert_eq!(
-                (stats.exact_fallbacks, stats.refine_fallbacks),
-                (0, 0),
+                (
+                    stats.inclusion_decided,
+                    stats.multiprecision_pieces,
+                    stats.adaptive_refines,
+                    stats.exact_fallbacks,
+                    stats.refine_fallbacks
+                ),
+                (1, 0, 0, 0, 0),
                 "{roots:?}: {stats:?}"
             );
         }
+    }
+
+    #[test]
+    fn aberth_sum_keeps_the_terms_of_approximations_beyond_2_500() {
+        // Regression: the shortcut `conj(d)/|d|²` of Aberth's sum gave 0 for every term of
+        // the approximation near 1.7·10²⁰¹ (`|d|²` overflowed), so its step was Newton's,
+        // which halved it towards 0 in every sweep; the discs then decided nothing and the
+        // query went to 17 multiprecision pieces.
+        let p = Poly::from_roots(&[
+            1.6888162361460415e201,
+            7.249935932614283e-6,
+            -4.921500301235755e59,
+        ]);
+        let (roots, stats) = full_precision_roots(&p);
+        assert_eq!(roots.len(), 3, "{roots:?}");
+        assert_eq!(
+            (stats.inclusion_decided, stats.multiprecision_pieces),
+            (1, 0),
+            "decided by the discs: {stats:?}"
+        );
     }
 
     #[test]
@@ -1459,5 +1518,33 @@ mod tests {
             let p = Poly::new(c);
             full_precision_roots(&p);
         }
+    }
+}
+#[cfg(test)]
+mod debug_tmp {
+    use super::*;
+    #[test]
+    fn dbg_spread() {
+        let p = Poly::<f64>::from_roots(&[
+            1.6888162361460415e201,
+            7.249935932614283e-6,
+            -4.921500301235755e59,
+        ]);
+        let c = p.coeffs();
+        eprintln!("c = {c:?}");
+        let mut s = Scratch::default();
+        s.reserve(3);
+        let a = approximate(c, &mut s);
+        eprintln!("approx {a} z = {:?}", s.z);
+        let ce = certify(c, &mut s);
+        eprintln!("certify {ce} r = {:?}", s.radius);
+        for &z in &s.z {
+            eprintln!("abs_p_upper {:?} = {:?}", z, abs_p_upper(c, z));
+        }
+        decide(c, f64::NEG_INFINITY, f64::INFINITY, &mut s);
+        eprintln!(
+            "brackets {:?} undecided {:?} shadows {:?}",
+            s.brackets, s.undecided, s.shadow
+        );
     }
 }
