@@ -5,8 +5,12 @@
 //! & Louvet, "Algorithms for accurate, validated and fast polynomial evaluation", Japan J.
 //! Indust. Appl. Math. 26, 2009, Theorem 3.1). [`certified_sign`] tries the first and only
 //! pays for the second when the first cannot decide, which near a simple root shrinks the
-//! band of undecidable points by a factor of about 2^53.
+//! band of undecidable points by a factor of about 2^53. Where `Σ|cᵢ||x|ⁱ` overflows (so
+//! both bounds are infinite), both tiers run on the polynomial rescaled by powers of two
+//! (`rescale.rs`; `paper-notes/isolation.md`, "Extended exponent range"), which cannot
+//! overflow.
 
+use crate::rescale::{ldexp, with_rescaled};
 use crate::univariate::{Bounded, ETA, Poly, UNIT_ROUNDOFF, gamma};
 
 /// An upper bound on `γ(k)/(1 − γ(k)) = k·u/(1 − 2k·u)` (`u` = [`UNIT_ROUNDOFF`]) without a division:
@@ -154,7 +158,8 @@ fn sign_if_certain(v: f64, err: f64) -> i8 {
 
 /// The certified sign of `p(x)` (−1 or 1), or 0 when neither tier can certify it (then
 /// `p(x)` is zero or within about `2^-100` of zero relative to `Σ|cᵢ||x|^i`, or within
-/// `slack` of zero).
+/// `slack` of zero). Where `Σ|cᵢ||x|^i` overflows, the tiers run on the rescaled polynomial
+/// ([`rescaled_value`]), with the same guarantee relative to the largest `|cᵢ||x|^i`.
 ///
 /// `slack` widens every error bound by a caller's bound on `|p_true(x) − p(x)|` (0 for the
 /// stored polynomial itself; see [`Slack`](crate::query::Slack)): a sign certified with it is
@@ -187,7 +192,10 @@ pub(crate) fn certified_value_pair(
         0 if slack > 0.0 && v.abs() <= slack => (v, 0),
         0 => {
             let (v, err) = comp_horner_bounded(c, at);
-            (v, sign_if_certain(v, err + slack))
+            match sign_if_certain(v, err + slack) {
+                0 if !err.is_finite() => rescaled_value(c, at, slack),
+                s => (v, s),
+            }
         }
         s => (v, s),
     };
@@ -204,10 +212,49 @@ pub(crate) fn certified_value(c: &[f64], x: f64, slack: f64) -> (f64, i8) {
         0 if slack > 0.0 && v.abs() <= slack => (v, 0),
         0 => {
             let (v, err) = comp_horner_bounded(c, x);
-            (v, sign_if_certain(v, err + slack))
+            match sign_if_certain(v, err + slack) {
+                // Σ|cᵢ||x|ⁱ overflowed (both bounds are infinite): the rescaled tiers.
+                0 if !err.is_finite() => rescaled_value(c, x, slack),
+                s => (v, s),
+            }
         }
         s => (v, s),
     }
+}
+
+/// The tiers of [`certified_value`] on the rescaled polynomial `p(x) = 2^s·q(y)`, `x = 2^k·y`
+/// (`rescale.rs`), for a point where `Σ|cᵢ||x|ⁱ` overflows (the first two tiers have no
+/// finite bound there). Returns `p(x)` as `2^s` times `q`'s computed value (`±∞` when that
+/// overflows; the sign is the certified one) and the certified sign, 0 when undecided.
+///
+/// # Accuracy
+/// The sign of `q(y)` is certified with the bound of the tier that decides, plus
+/// `η·(n + 1)` for the rounding of `q`'s coefficients (`rescale::with_rescaled`: `|y| < 1`,
+/// so `Σ|y|ⁱ ≤ n + 1`, and that product is exact), plus the slack scaled by `2^-s` and raised
+/// by `η` for its own rounding; the sum of the three is raised by `(1 + 4ε)` for its two
+/// roundings. `p(x)` has the sign of `q(y)`, since `2^s > 0`.
+#[cold]
+#[inline(never)]
+fn rescaled_value(c: &[f64], x: f64, slack: f64) -> (f64, i8) {
+    with_rescaled(c, x, 0.0, |q, y, _, r| {
+        let coeff_err = ETA * q.len() as f64;
+        let slack_q = if slack > 0.0 {
+            ldexp(slack, -r.s) + ETA
+        } else {
+            0.0
+        };
+        let bound = |err: f64| (err + coeff_err + slack_q) * (1.0 + 4.0 * f64::EPSILON);
+        let (v, err) = horner_bounded(q, y);
+        let (v, sign) = match sign_if_certain(v, bound(err)) {
+            0 => {
+                let (v, err) = comp_horner_bounded(q, y);
+                (v, sign_if_certain(v, bound(err)))
+            }
+            s => (v, s),
+        };
+        (ldexp(v, r.s), sign)
+    })
+    .unwrap_or((f64::NAN, 0))
 }
 
 /// The factor by which an underflow error of one operation in the chain `w, w², …, wⁿ` can
@@ -288,6 +335,70 @@ mod tests {
             certified_sign(p.coeffs(), 1.0, 0.0),
             0,
             "an exact root is never signed"
+        );
+    }
+
+    /// The exact sign of the stored polynomial at `x`.
+    fn exact_sign(c: &[f64], x: f64) -> i8 {
+        let v = Poly::new(c.to_vec())
+            .to_rat()
+            .unwrap()
+            .eval(&Rat::from_float(x).unwrap());
+        i8::from(v.is_positive()) - i8::from(v.is_negative())
+    }
+
+    #[test]
+    fn rescaled_tier_signs_are_exact_where_the_bound_overflows() {
+        // Coefficients of 10^-300 … 10^300 and points of 10^-300 … 10^300, and polynomials
+        // with roots up to 10^250 probed a few ulps from each root: wherever
+        // Σ|cᵢ||x|ⁱ overflows, the sign comes from the rescaled tier, whose coefficients then
+        // often fall below the normal range. Every certified sign must be the exact one.
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        let magnitude = |rng: &mut rand_chacha::ChaCha8Rng, lo: i32, hi: i32| {
+            let v = rng.gen_range(1.0..10.0) * 10f64.powi(rng.gen_range(lo..=hi));
+            if rng.r#gen::<bool>() { v } else { -v }
+        };
+        let (mut tried, mut decided, mut near_root) = (0, 0, 0);
+        for case in 0..600 {
+            let (c, points): (Vec<f64>, Vec<f64>) = if case % 2 == 0 {
+                let n = rng.gen_range(2..=8);
+                let c = (0..=n).map(|_| magnitude(&mut rng, -300, 300)).collect();
+                (c, vec![magnitude(&mut rng, -300, 300)])
+            } else {
+                let roots: Vec<f64> = (0..rng.gen_range(2..=4))
+                    .map(|_| magnitude(&mut rng, -100, 250))
+                    .collect();
+                let c = Poly::<f64>::from_roots(&roots).coeffs().to_vec();
+                let points = roots
+                    .iter()
+                    .flat_map(|&r| (-3..=3).map(move |k| r * (1.0 + f64::from(k) * f64::EPSILON)))
+                    .collect();
+                (c, points)
+            };
+            if c.iter().any(|v| !v.is_finite()) {
+                continue;
+            }
+            for x in points {
+                if horner_bounded(&c, x).1.is_finite() {
+                    continue;
+                }
+                tried += 1;
+                let (_, s) = certified_value(&c, x, 0.0);
+                if s != 0 {
+                    decided += 1;
+                    near_root += case % 2;
+                    assert_eq!(s, exact_sign(&c, x), "{c:?} at {x:e}");
+                }
+                // With a slack the sign is the sign of every polynomial within it, the stored
+                // one included.
+                let (_, s) = certified_value(&c, x, 1e-300);
+                assert!(s == 0 || s == exact_sign(&c, x), "{c:?} at {x:e}, slack");
+            }
+        }
+        assert!(
+            tried > 300 && decided > 9 * tried / 10 && near_root > 50,
+            "the rescaled tier ran {tried} times, decided {decided} ({near_root} near roots)"
         );
     }
 }

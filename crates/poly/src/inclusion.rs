@@ -40,6 +40,7 @@ use crate::eval_bound::{
     certified_sign, comp_horner_bounded, horner_bounded, horner_derivative_and_bound,
 };
 use crate::int_poly::IntPoly;
+use crate::rescale::{ldexp, with_rescaled};
 use crate::scalar::rat_from_f64;
 use crate::univariate::{ETA, Poly, UNIT_ROUNDOFF};
 
@@ -201,8 +202,8 @@ struct Scratch {
     /// Per cluster (indexed by its root in `parent`): not tried yet (`None`), or the exact
     /// multiple root certified for it (`Some(Some(r))`) or not (`Some(None)`).
     cluster: Vec<Option<Option<f64>>>,
-    /// Indices of the Newton polygon's vertices.
-    hull: Vec<usize>,
+    /// Indices of the Newton polygon's vertices, with their `log₂|aᵢ|`.
+    hull: Vec<(usize, f64)>,
     /// The coefficients of `p(g + y)` for the starting points ([`starting_points`]).
     shifted: Vec<f64>,
 }
@@ -319,23 +320,22 @@ pub(crate) fn real_pieces(c: &[f64], lo: f64, hi: f64, mut emit: impl FnMut(Piec
 /// A heuristic: only the certificate's radii matter for correctness. `false` when a circle's
 /// radius is not a positive finite number or `a₀ = 0` (fewer than `n` points). The circles
 /// are centred at `centre`: `c` holds the coefficients of `p(centre + y)`.
-fn initial_points(c: &[f64], centre: f64, hull: &mut Vec<usize>, z: &mut Vec<C>) -> bool {
+fn initial_points(c: &[f64], centre: f64, hull: &mut Vec<(usize, f64)>, z: &mut Vec<C>) -> bool {
     let n = c.len() - 1;
-    let log = |i: usize| c[i].abs().log2();
-    // Andrew's monotone chain, upper part, over the non-zero coefficients.
+    // Andrew's monotone chain, upper part, over the non-zero coefficients; each vertex keeps
+    // its `log₂|aᵢ|` (one logarithm per coefficient).
     hull.clear();
     for i in (0..=n).filter(|&i| c[i] != 0.0) {
-        let li = log(i);
-        while let [.., a, b] = hull[..] {
+        let li = c[i].abs().log2();
+        while let [.., (a, la), (b, lb)] = hull[..] {
             // Drop b when it lies on or below the segment from a to i.
-            let (la, lb) = (log(a), log(b));
             if (b - a) as f64 * (li - la) - (i - a) as f64 * (lb - la) >= 0.0 {
                 hull.pop();
             } else {
                 break;
             }
         }
-        hull.push(i);
+        hull.push((i, li));
     }
     // Offset angle σ = 0.7 (Bini 1996): keeps the starting points off the real axis, where
     // conjugate-symmetric starts would never leave it.
@@ -343,9 +343,9 @@ fn initial_points(c: &[f64], centre: f64, hull: &mut Vec<usize>, z: &mut Vec<C>)
     let tau = std::f64::consts::TAU;
     z.clear();
     for e in hull.windows(2) {
-        let (i, j) = (e[0], e[1]);
+        let ((i, li), (j, lj)) = (e[0], e[1]);
         let k = j - i;
-        let radius = ((log(i) - log(j)) / k as f64).exp2();
+        let radius = ((li - lj) / k as f64).exp2();
         if !(radius.is_finite() && radius > 0.0) {
             return false;
         }
@@ -396,6 +396,21 @@ fn starting_points(c: &[f64], s: &mut Scratch) -> bool {
     initial_points(c, 0.0, &mut s.hull, &mut s.z)
 }
 
+/// [`horner_c`] where its values overflow: the same three on the rescaled polynomial
+/// (`p(z) = 2^s·q(w)`, `z = 2^k·w`; `rescale.rs`), each divided by `2^s` (`p'` also by the
+/// `2^-k` of the chain rule), so the ratios the iteration uses (`p/p'`, `|p|` against the
+/// noise, `|p|/|p'|`) are unchanged; non-finite values when it cannot be rescaled.
+#[cold]
+#[inline(never)]
+fn horner_c_rescaled(c: &[f64], z: C) -> (C, C, f64) {
+    with_rescaled(c, z.re, z.im, |q, wr, wi, r| {
+        let (p, dp, noise) = horner_c(q, C::new(wr, wi));
+        let dp = C::new(ldexp(dp.re, -r.k), ldexp(dp.im, -r.k));
+        (p, dp, noise)
+    })
+    .unwrap_or((C::new(f64::NAN, 0.0), C::new(f64::NAN, 0.0), f64::NAN))
+}
+
 /// `p(z)`, `p'(z)` by Horner's rule (complex, or real for a real `z`), plain values for the
 /// iteration, and an estimate of the rounding error of `p(z)`: Horner's bound
 /// `γ(2n)·Σ|cᵢ||z|ⁱ` (Higham eq. 5.3), doubled (in the index for complex products). Below it
@@ -432,8 +447,35 @@ fn horner_c(c: &[f64], z: C) -> (C, C, f64) {
 /// rounded up), `(1 + 8ε)` the roundings of the bound, and `8η·Σ|z|ⁱ` the underflow of the
 /// four real products per step (each off by at most `η/2` absolutely, carried forward by
 /// powers of `|z|`). `|v|` is bounded by `|Re v| + |Im v|`.
-fn abs_p_upper(c: &[f64], z: C) -> f64 {
+///
+/// Returned as `(b, e)`, the bound being `b·2^e`: where the bound on `p` itself overflows
+/// (`e = 0` otherwise), it is the same bound on the rescaled `q` at `w` (`p(z) = 2^e·q(w)`,
+/// `z = 2^k·w`; `rescale.rs`) plus `η·Σ|w|ⁱ` for the rounding of `q`'s coefficients.
+#[inline]
+fn abs_p_upper(c: &[f64], z: C) -> (f64, i64) {
+    let b = abs_p_upper_plain::<false>(c, z);
+    if b.is_finite() {
+        return (b, 0);
+    }
+    abs_p_upper_rescaled(c, z)
+}
+
+/// [`abs_p_upper`] of the rescaled polynomial; `(∞, 0)` when it cannot be rescaled.
+#[cold]
+#[inline(never)]
+fn abs_p_upper_rescaled(c: &[f64], z: C) -> (f64, i64) {
+    with_rescaled(c, z.re, z.im, |q, wr, wi, r| {
+        (abs_p_upper_plain::<true>(q, C::new(wr, wi)), r.s)
+    })
+    .unwrap_or((f64::INFINITY, 0))
+}
+
+/// [`abs_p_upper`] without the rescaling; for `RESCALED` coefficients (each known only to
+/// within `η`) with `η·Σ|z|ⁱ` added.
+#[inline(always)]
+fn abs_p_upper_plain<const RESCALED: bool>(c: &[f64], z: C) -> f64 {
     const EPS: f64 = f64::EPSILON;
+    let coeff_eta = if RESCALED { 1.0 } else { 0.0 };
     if z.im == 0.0 {
         let (v, err) = horner_bounded(c, z.re);
         let (v, err) = if v.abs() > COMPENSATE_BELOW * err {
@@ -441,7 +483,12 @@ fn abs_p_upper(c: &[f64], z: C) -> f64 {
         } else {
             comp_horner_bounded(c, z.re)
         };
-        return (v.abs() + err) * (1.0 + 2.0 * EPS);
+        // Σ|z|ⁱ ≤ n + 1 for the rescaled |z| < 1 (the only caller with coeff_eta > 0); the
+        // product is exact in units of η.
+        debug_assert!(!RESCALED || z.re.abs() < 1.0, "rescaled point");
+        let coeff_err = coeff_eta * ETA * c.len() as f64;
+        // Two additions (one when coeff_err = 0), each within (1 + u): (1 + 2ε) covers both.
+        return (v.abs() + err + coeff_err) * (1.0 + 2.0 * EPS);
     }
     let az = z.abs() * (1.0 + 2.0 * EPS);
     let (mut v, mut s, mut w) = (C::default(), 0.0f64, 0.0f64);
@@ -451,7 +498,7 @@ fn abs_p_upper(c: &[f64], z: C) -> f64 {
         s = s * az + ci.abs();
         w = w * az + 1.0;
     }
-    let err = gamma_ratio(6 * c.len()) * s * (1.0 + 8.0 * EPS) + 8.0 * ETA * w;
+    let err = gamma_ratio(6 * c.len()) * s * (1.0 + 8.0 * EPS) + (8.0 + coeff_eta) * ETA * w;
     (v.re.abs() + v.im.abs() + err) * (1.0 + 4.0 * EPS)
 }
 
@@ -475,6 +522,8 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
     let n = s.z.len();
     s.done.clear();
     s.done.resize(n, false);
+    // Whether some approximation is beyond `FAR_COORDINATE` (kept up to date as they move).
+    let mut far = s.z.iter().any(|&z| is_far(z));
     for _ in 0..MAX_ABERTH_SWEEPS {
         let mut moving = false;
         for i in 0..n {
@@ -482,9 +531,12 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
                 continue;
             }
             let zi = s.z[i];
-            let (p, dp, noise) = horner_c(c, zi);
+            let (mut p, mut dp, mut noise) = horner_c(c, zi);
             if !(p.is_finite() && dp.is_finite() && noise.is_finite()) {
-                return false;
+                (p, dp, noise) = horner_c_rescaled(c, zi);
+                if !(p.is_finite() && dp.is_finite() && noise.is_finite()) {
+                    return false;
+                }
             }
             if p.abs_fast() <= noise {
                 s.done[i] = true;
@@ -492,13 +544,14 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
             }
             // Aberth's correction w = N/(1 − N·Σ 1/(zᵢ − zⱼ)), N = p/p' (Bini 1996, eq. 6).
             let newton = p.div(dp);
-            let sum = aberth_sum(zi, &s.z[..i], &s.z[i + 1..]);
+            let sum = aberth_sum(zi, &s.z[..i], &s.z[i + 1..], far);
             let w = newton.div(C::new(1.0, 0.0).sub(newton.mul(sum)));
             if !w.is_finite() {
                 return false;
             }
             let next = zi.sub(w);
             s.z[i] = next;
+            far |= is_far(next);
             if w.abs_fast() <= 2.0 * f64::EPSILON * next.abs_fast() {
                 s.done[i] = true;
             } else {
@@ -516,7 +569,10 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
             // radius `n·max(|p|, noise)/|p'|`: a real root's approximation ends there; a
             // non-real root so close to the axis is caught by the certificate (its disc and
             // its conjugate's overlap, or the two real approximations coincide).
-            let (p, dp, noise) = horner_c(c, z);
+            let (mut p, mut dp, mut noise) = horner_c(c, z);
+            if !(p.is_finite() && dp.is_finite() && noise.is_finite()) {
+                (p, dp, noise) = horner_c_rescaled(c, z);
+            }
             let reach = n as f64 * p.abs_fast().max(noise) / dp.abs_fast();
             if z.im.abs() <= reach {
                 s.z[i] = C::new(z.re, 0.0);
@@ -539,6 +595,7 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
     for i in 0..n {
         s.done[i] = s.z[i].im != 0.0;
     }
+    let mut far = s.z.iter().any(|&z| is_far(z));
     for _ in 0..MAX_POLISH_STEPS {
         let mut moving = false;
         for i in 0..n {
@@ -547,19 +604,29 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
             }
             let x = s.z[i].re;
             let (v, err) = comp_horner_bounded(c, x);
-            if v.abs() <= err {
+            if v.abs() <= err && err.is_finite() {
                 s.done[i] = true;
                 continue;
             }
             let (_, d, _) = horner_derivative_and_bound(c, x, x);
+            let (v, err, d) = if err.is_finite() && d.is_finite() {
+                (v, err, d)
+            } else {
+                polish_values_rescaled(c, x)
+            };
+            if v.abs() <= err {
+                s.done[i] = true;
+                continue;
+            }
             let newton = v / d;
-            let sum = aberth_sum(C::new(x, 0.0), &s.z[..i], &s.z[i + 1..]).re;
+            let sum = aberth_sum(C::new(x, 0.0), &s.z[..i], &s.z[i + 1..], far).re;
             let next = x - newton / (1.0 - newton * sum);
             if !next.is_finite() {
                 s.done[i] = true;
                 continue;
             }
             s.z[i] = C::new(next, 0.0);
+            far |= next.abs() > FAR_COORDINATE;
             if next == x {
                 s.done[i] = true;
             } else {
@@ -572,12 +639,36 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
     }
 }
 
+/// For the polish where `p(x)` or `p'(x)` overflows: the compensated value of the rescaled
+/// polynomial with its error bound, and its derivative, all divided by the same `2^s`
+/// (`rescale.rs`; `p'` also by the `2^-k` of the chain rule), which leaves Newton's step and
+/// the stop test unchanged (a heuristic); NaN when it cannot be rescaled.
+#[cold]
+#[inline(never)]
+fn polish_values_rescaled(c: &[f64], x: f64) -> (f64, f64, f64) {
+    with_rescaled(c, x, 0.0, |q, y, _, r| {
+        let (v, err) = comp_horner_bounded(q, y);
+        let (_, d, _) = horner_derivative_and_bound(q, y, y);
+        (v, err + ETA * q.len() as f64, ldexp(d, -r.k))
+    })
+    .unwrap_or((f64::NAN, f64::NAN, f64::NAN))
+}
+
 /// Aberth's sum `Σ_j 1/(z − zⱼ)` over the other approximations (`before` and `after` `zᵢ`),
 /// for the iteration only. Each term as `conj(d)·(1/|d|²)`: one division, no test per term;
 /// where some `|d|²` over- or underflowed the sum is not finite, or (for `|d|² > 2^1000`)
 /// a term that is negligible anyway came out 0, and a non-finite sum is recomputed with
 /// [`C::recip`] (Smith's rule where needed).
-fn aberth_sum(z: C, before: &[C], after: &[C]) -> C {
+///
+/// `far` says that some approximation has a coordinate beyond [`FAR_COORDINATE`]: then a
+/// `|d|²` may overflow and its term come out 0, which is not negligible when `z` is as
+/// large as `d` (a cubic with roots near `10⁻⁶`, `10⁵⁹` and `10²⁰¹` saw the sum of its
+/// largest approximation vanish, and Aberth's step became Newton's, which halved that
+/// approximation towards 0 for 80 sweeps); the sum is then taken with [`C::recip`] alone.
+fn aberth_sum(z: C, before: &[C], after: &[C], far: bool) -> C {
+    if far {
+        return aberth_sum_recip(z, before, after);
+    }
     let mut sum = C::default();
     for &zj in before.iter().chain(after) {
         let d = z.sub(zj);
@@ -585,12 +676,30 @@ fn aberth_sum(z: C, before: &[C], after: &[C]) -> C {
         sum = C::new(sum.re + d.re * r, sum.im - d.im * r);
     }
     if !sum.is_finite() {
-        sum = C::default();
-        for &zj in before.iter().chain(after) {
-            sum = sum.add(z.sub(zj).recip());
-        }
+        sum = aberth_sum_recip(z, before, after);
     }
     sum
+}
+
+/// [`aberth_sum`] with a reciprocal ([`C::recip`], Smith's rule where `|d|²` leaves the
+/// normal range) per term.
+#[cold]
+#[inline(never)]
+fn aberth_sum_recip(z: C, before: &[C], after: &[C]) -> C {
+    let mut sum = C::default();
+    for &zj in before.iter().chain(after) {
+        sum = sum.add(z.sub(zj).recip());
+    }
+    sum
+}
+
+/// A coordinate of an approximation beyond which [`aberth_sum`]'s shortcut may overflow:
+/// `2^500`. Below it every coordinate difference is at most `2^501` and its square finite.
+const FAR_COORDINATE: f64 = f64::from_bits((1023 + 500) << 52);
+
+/// Whether `z` has a coordinate beyond [`FAR_COORDINATE`].
+fn is_far(z: C) -> bool {
+    z.re.abs().max(z.im.abs()) > FAR_COORDINATE
 }
 
 /// A positive normal number as `m·2^e`, `m ∈ [1, 2)` (exact), for products of many factors
@@ -606,15 +715,58 @@ fn pow2(e: i64) -> f64 {
     f64::from_bits(((e + 1023) as u64) << 52)
 }
 
-/// The computed `|a − b|²` of two centres, or `None` when it is below [`MIN_DISTANCE`] or
-/// not finite. The true value is at least this times `(1 + u)^-4`: each coordinate
-/// difference rounds once (`|d| ≥ |d̂|/(1 + u)`), the squares and their sum once each; an
-/// underflowing square errs by at most `η/2 ≤ 2^-174·MIN_DISTANCE` absolutely, within the
-/// margins taken by the callers.
-fn dist_sq(a: C, b: C) -> Option<f64> {
+/// The computed `|a − b|²` of two centres as `m·2^e` (`m ∈ [1, 2)`), or `None` when it is
+/// below [`MIN_DISTANCE`] or a difference is not finite. The true value is at least this
+/// times `(1 + u)^-4`: each coordinate difference rounds once (`|d| ≥ |d̂|/(1 + u)`), the
+/// squares and their sum once each; an underflowing square errs by at most
+/// `η/2 ≤ 2^-174·MIN_DISTANCE` absolutely, within the margins taken by the callers. Centres
+/// more than `2^511` apart (roots spread over more than `10¹⁵⁴`, whose squared distance
+/// overflows) are compared through [`scaled_diff`], which keeps that bound.
+#[inline]
+fn dist_sq(a: C, b: C) -> Option<(f64, i64)> {
     let d = a.sub(b);
     let q = d.re * d.re + d.im * d.im;
-    (q >= MIN_DISTANCE && q.is_finite()).then_some(q)
+    if q.is_finite() {
+        return (q >= MIN_DISTANCE).then(|| split(q));
+    }
+    dist_sq_far(a, b)
+}
+
+/// [`dist_sq`] of centres whose squared distance overflowed (a coordinate difference above
+/// `2^511`), through [`scaled_diff`].
+#[cold]
+#[inline(never)]
+fn dist_sq_far(a: C, b: C) -> Option<(f64, i64)> {
+    let (d, e) = scaled_diff(a, b)?;
+    let q = d.re * d.re + d.im * d.im;
+    if e == 0 {
+        // Not finite after all: a non-finite centre.
+        return None;
+    }
+    let (m, qe) = split(q);
+    Some((m, qe + 2 * e))
+}
+
+/// Exponent above which [`scaled_diff`] scales a difference down: `2^500`, so that its
+/// square (below `2^1002` after the scaling by `2^-600`) is finite.
+const BIG_DIFFERENCE: f64 = f64::from_bits((1023 + 500) << 52);
+
+/// `a − b` as `d·2^e`, `d` the computed difference (`e = 0`), or, when a coordinate of it
+/// exceeds [`BIG_DIFFERENCE`], that difference times `2^-600` (`e = 600`): exact for the larger
+/// coordinate (then above `2^-100`); the other one may underflow to a value smaller in
+/// magnitude, whose square is then below `2^-1022`, less than `u·2^-200` against the larger
+/// square, so the computed sum of squares is still at least the true one times
+/// `(1 + u)^-4` up to the margin that [`dist_sq`]'s callers take. `None` when a difference is
+/// not finite.
+fn scaled_diff(a: C, b: C) -> Option<(C, i64)> {
+    let d = a.sub(b);
+    if !d.is_finite() {
+        return None;
+    }
+    if d.re.abs().max(d.im.abs()) <= BIG_DIFFERENCE {
+        return Some((d, 0));
+    }
+    Some((C::new(ldexp(d.re, -600), ldexp(d.im, -600)), 600))
 }
 
 /// Step 2: upper bounds `rᵢ ≥ n·|p(zᵢ)|/(|aₙ|·∏_{j≠i}|zᵢ − zⱼ|)`. `false` when the centres
@@ -637,20 +789,20 @@ fn certify(c: &[f64], s: &mut Scratch) -> bool {
     let margin = 1.0 + (4 * n + 16) as f64 * f64::EPSILON;
     for i in 0..n {
         let zi = s.z[i];
-        let p_up = abs_p_upper(c, zi);
+        let (p_up, p_scale) = abs_p_upper(c, zi);
         if !p_up.is_finite() {
             return false;
         }
         let (p_m, p_e) = split(p_up.max(f64::MIN_POSITIVE));
+        let p_e = p_e + p_scale;
         let (mut prod, mut prod_e) = (1.0f64, 0i64);
         for (j, &zj) in s.z.iter().enumerate() {
             if j == i {
                 continue;
             }
-            let Some(q) = dist_sq(zi, zj) else {
+            let Some((q_m, q_e)) = dist_sq(zi, zj) else {
                 return false;
             };
-            let (q_m, q_e) = split(q);
             let (m, e) = split(prod * q_m);
             prod = m;
             prod_e += e + q_e;
@@ -678,14 +830,39 @@ fn certify(c: &[f64], s: &mut Scratch) -> bool {
 /// `|a − b| > ra + rb` with the distance bounded below ([`dist_sq`], `(1 − 4ε)` covering its
 /// `(1 + u)^-4`) and the sum of radii above (two roundings of the sum and square, each
 /// covered by `(1 + 2ε)`).
+///
+/// Centres whose squared distance overflows are compared at the scale of [`scaled_diff`], the radii
+/// scaled by the same `2^-600` and rounded up (by `η`, which covers an underflowing
+/// quotient; one more rounding of the sum is within the `(1 + 2ε)`).
+#[inline]
 fn discs_apart(a: C, ra: f64, b: C, rb: f64) -> bool {
     let d = a.sub(b);
     let q = d.re * d.re + d.im * d.im;
-    // Too close to tell, or too far to compare in `f64` (an infinite `q` says nothing
-    // about `(ra + rb)²`, which may overflow too): not certainly apart.
-    if !(q >= MIN_DISTANCE && q.is_finite()) {
+    if !q.is_finite() {
+        return discs_apart_far(a, ra, b, rb);
+    }
+    // Too close to tell: not certainly apart.
+    if q < MIN_DISTANCE {
         return false;
     }
+    let t = (ra + rb) * (1.0 + 2.0 * f64::EPSILON);
+    q * (1.0 - 4.0 * f64::EPSILON) > t * t * (1.0 + 2.0 * f64::EPSILON)
+}
+
+/// [`discs_apart`] for centres whose squared distance overflowed, at the scale of
+/// [`scaled_diff`].
+#[cold]
+#[inline(never)]
+fn discs_apart_far(a: C, ra: f64, b: C, rb: f64) -> bool {
+    let Some((d, e)) = scaled_diff(a, b) else {
+        return false;
+    };
+    let q = d.re * d.re + d.im * d.im;
+    // A non-finite centre, or a distance still too large: not certainly apart.
+    if e == 0 || !q.is_finite() {
+        return false;
+    }
+    let (ra, rb) = (ldexp(ra, -e) + ETA, ldexp(rb, -e) + ETA);
     let t = (ra + rb) * (1.0 + 2.0 * f64::EPSILON);
     q * (1.0 - 4.0 * f64::EPSILON) > t * t * (1.0 + 2.0 * f64::EPSILON)
 }
@@ -1118,15 +1295,7 @@ mod tests {
     #[test]
     fn exact_quadruple_root_is_certified_by_its_cluster() {
         let p = Poly::from_roots(&[1000.0; 4]);
-        let mut stats = RootStats::default();
-        let roots = p
-            .real_roots_with(
-                f64::NEG_INFINITY,
-                f64::INFINITY,
-                &RootOptions::new(0.0),
-                &mut stats,
-            )
-            .expect("valid query");
+        let (roots, stats) = all_roots_full_precision(&p);
         assert_eq!(roots, vec![1000.0], "{stats:?}");
         assert_eq!(
             (
@@ -1193,6 +1362,189 @@ mod tests {
         assert!(
             !real_pieces(&[1.0, f64::NAN, 1.0], -1.0, 1.0, |_| {}),
             "NaN is refused"
+        );
+    }
+
+    /// The real roots of `p` on `(−∞, ∞)` at `x_tol = 0`, with the query's statistics.
+    fn all_roots_full_precision(p: &Poly<f64>) -> (Vec<f64>, RootStats) {
+        let mut stats = RootStats::default();
+        let roots = p
+            .real_roots_with(
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                &RootOptions::new(0.0),
+                &mut stats,
+            )
+            .expect("valid query");
+        (roots, stats)
+    }
+
+    /// The real roots of the stored `p` on `(−∞, ∞)` at `x_tol = 0`, checked against the
+    /// exact oracle: as many as exact isolation finds ([`crate::testutil::stored_roots`]),
+    /// each near the oracle's and a faithful rounding of a root (the exact
+    /// sign of `p` changes between it and one of its neighbouring `f64`, or is 0 there).
+    fn full_precision_roots(p: &Poly<f64>) -> (Vec<f64>, RootStats) {
+        let (got, stats) = all_roots_full_precision(p);
+        // Every real root is finite: (−MAX, MAX] holds them all.
+        let want = crate::testutil::stored_roots(p, -f64::MAX, f64::MAX);
+        assert_eq!(got.len(), want.len(), "got {got:?}, exact {want:?}");
+        let q = p.to_rat().expect("finite");
+        let sign = |x: f64| {
+            let v = q.eval(&rat_from_f64(x).expect("finite"));
+            i8::from(v > Rat::default()) - i8::from(v < Rat::default())
+        };
+        for (&g, &w) in got.iter().zip(&want) {
+            // The oracle is refined to 2^-80 absolutely (`stored_roots`).
+            assert!(
+                (g - w).abs() <= (4.0 * f64::EPSILON * w.abs()).max(2f64.powi(-79)),
+                "got {g:e}, exact {w:e}: {got:?}"
+            );
+            let s = sign(g);
+            assert!(
+                s == 0 || sign(g.next_down()) == -s || sign(g.next_up()) == -s,
+                "{g:e} is not a faithful rounding of a root of {p:?}"
+            );
+        }
+        (got, stats)
+    }
+
+    #[test]
+    fn quartic_with_roots_up_to_1e154_is_decided_without_wide_tiers() {
+        // Orellana–De Michele's (x − 1)(x − 10)(x − 10¹⁵²)(x − 10¹⁵⁴), coefficients by
+        // Vieta's formulas in f64 as they build it: Σ|cᵢ||x|ⁱ overflows beyond |x| ≈ 10⁷⁷
+        // (and at 10 already), so every sign, the iteration and the certificate use the
+        // rescaled polynomial. Before: the discs overflowed, and the whole range was
+        // isolated and refined with 256-bit signs.
+        let (x1, x2, x3, x4) = (1.0, 10.0, 1e152, 1e154);
+        let p = Poly::new(vec![
+            x1 * x2 * x3 * x4,
+            -x1 * x2 * (x3 + x4) - x3 * x4 * (x1 + x2),
+            x1 * (x2 + x3) + x2 * (x3 + x4) + x4 * (x1 + x3),
+            -(x1 + x2 + x3 + x4),
+            1.0,
+        ]);
+        let (roots, stats) = full_precision_roots(&p);
+        assert_eq!(roots.len(), 4, "{roots:?}");
+        assert_eq!(
+            (
+                stats.inclusion_decided,
+                stats.inclusion_undecided,
+                stats.adaptive_pieces,
+                stats.adaptive_refines,
+                stats.multiprecision_pieces,
+                stats.exact_fallbacks,
+                stats.refine_fallbacks,
+            ),
+            (1, 0, 0, 0, 0, 0, 0),
+            "decided by the discs, refined in f64: {stats:?}"
+        );
+    }
+
+    #[test]
+    fn roots_spread_over_more_than_1e200_are_decided_and_exact() {
+        // Random signs and decimal exponents, spread ≥ 10²⁰⁰, with the products of the large
+        // (and of the small) roots kept inside the f64 range so that the stored
+        // coefficients are finite and non-zero.
+        let mut rng = ChaCha8Rng::seed_from_u64(200);
+        let mut cases = 0;
+        while cases < 12 {
+            let degree = rng.gen_range(3..=7);
+            let exps: Vec<i32> = (0..degree).map(|_| rng.gen_range(-150..=250)).collect();
+            let (lo, hi) = (exps.iter().min().unwrap(), exps.iter().max().unwrap());
+            let up: i32 = exps.iter().filter(|&&e| e > 0).sum();
+            let down: i32 = exps.iter().filter(|&&e| e < 0).sum();
+            let mut sorted = exps.clone();
+            sorted.sort_unstable();
+            if hi - lo < 200 || up > 290 || down < -290 || sorted.windows(2).any(|w| w[0] == w[1]) {
+                continue;
+            }
+            cases += 1;
+            let roots: Vec<f64> = exps
+                .iter()
+                .map(|&e| {
+                    let m: f64 = rng.gen_range(1.0..9.0);
+                    let r = m * 10f64.powi(e);
+                    if rng.r#gen::<bool>() { r } else { -r }
+                })
+                .collect();
+            let p = Poly::from_roots(&roots);
+            let (got, stats) = full_precision_roots(&p);
+            assert_eq!(got.len(), degree, "{roots:?}: {got:?}");
+            // Simple roots far apart: the discs decide, and the refinement ends in f64.
+            assert_eq!(
+                (
+                    stats.inclusion_decided,
+                    stats.multiprecision_pieces,
+                    stats.adaptive_refines,
+                    stats.exact_fallbacks,
+                    stats.refine_fallbacks
+                ),
+                (1, 0, 0, 0, 0),
+                "{roots:?}: {stats:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn aberth_sum_keeps_the_terms_of_approximations_beyond_2_500() {
+        // Regression: the shortcut `conj(d)/|d|²` of Aberth's sum gave 0 for every term of
+        // the approximation near 1.7·10²⁰¹ (`|d|²` overflowed), so its step was Newton's,
+        // which halved it towards 0 in every sweep; the discs then decided nothing and the
+        // query went to 17 multiprecision pieces.
+        let p = Poly::from_roots(&[
+            1.6888162361460415e201,
+            7.249935932614283e-6,
+            -4.921500301235755e59,
+        ]);
+        let (roots, stats) = full_precision_roots(&p);
+        assert_eq!(roots.len(), 3, "{roots:?}");
+        assert_eq!(
+            (stats.inclusion_decided, stats.multiprecision_pieces),
+            (1, 0),
+            "decided by the discs: {stats:?}"
+        );
+    }
+
+    #[test]
+    fn coefficients_that_underflow_when_rescaled_keep_exact_answers() {
+        // At the scale of the large roots the rescaled constant (and lower) coefficients
+        // fall below the normal range or to 0; their rounding is counted in the bound.
+        for c in [
+            vec![1e-300, -1e-150, 3e-10, -1e100, 1.0],
+            vec![-7e-320, 1e-200, -2.0, 5e150, 1e-100],
+            vec![1e300, -1e300, 1e-300, 0.0, -1e-250, 1e-300],
+            vec![2.5e-310, 0.0, -1e5, 0.0, 0.0, 0.0, 1e-290],
+        ] {
+            let p = Poly::new(c);
+            full_precision_roots(&p);
+        }
+    }
+}
+#[cfg(test)]
+mod debug_tmp {
+    use super::*;
+    #[test]
+    fn dbg_spread() {
+        let p = Poly::<f64>::from_roots(&[
+            1.6888162361460415e201,
+            7.249935932614283e-6,
+            -4.921500301235755e59,
+        ]);
+        let c = p.coeffs();
+        eprintln!("c = {c:?}");
+        let mut s = Scratch::default();
+        s.reserve(3);
+        let a = approximate(c, &mut s);
+        eprintln!("approx {a} z = {:?}", s.z);
+        let ce = certify(c, &mut s);
+        eprintln!("certify {ce} r = {:?}", s.radius);
+        for &z in &s.z {
+            eprintln!("abs_p_upper {:?} = {:?}", z, abs_p_upper(c, z));
+        }
+        decide(c, f64::NEG_INFINITY, f64::INFINITY, &mut s);
+        eprintln!(
+            "brackets {:?} undecided {:?} shadows {:?}",
+            s.brackets, s.undecided, s.shadow
         );
     }
 }

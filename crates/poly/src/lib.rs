@@ -6,7 +6,8 @@
 //!
 //! # Layers
 //! `scalar` (the [`Scalar`] trait over `f64` and [`Rat`]) → `univariate` ([`Poly`], the unit
-//! roundoff, Horner's rule, root bounds) → `eval_bound` (evaluation with rigorous error
+//! roundoff, Horner's rule, root bounds) → `rescale` (exact power-of-two rescaling, for
+//! evaluation beyond the `f64` range) → `eval_bound` (evaluation with rigorous error
 //! bounds) → `sturm`, `stam`, `bernstein`, `descartes` (root counting and isolation) →
 //! `exact_oracle` (exact isolation: Descartes or Sturm) → `certified`,
 //! `closed_form`, `refine` → `isolate` (the queries on [`Poly`]) → `query` ([`PolyRef`] and
@@ -73,6 +74,7 @@ mod near_zero;
 mod ops;
 mod query;
 mod refine;
+mod rescale;
 mod root_error;
 mod root_interval;
 mod root_options;
