@@ -669,14 +669,23 @@ fn aberth_sum(z: C, before: &[C], after: &[C], far: bool) -> C {
     if far {
         return aberth_sum_recip(z, before, after);
     }
-    let mut sum = C::default();
-    for &zj in before.iter().chain(after) {
+    // Two plain loops, not `before.iter().chain(after)`: the chained iterator's per-item
+    // branch was a sixth of the iteration's instructions (same terms, same order).
+    let mut sum = add_reciprocals(z, before, C::default());
+    sum = add_reciprocals(z, after, sum);
+    if !sum.is_finite() {
+        sum = aberth_sum_recip(z, before, after);
+    }
+    sum
+}
+
+/// `sum + Σ_j conj(z − zⱼ)/|z − zⱼ|²` over `zs`, in order: [`aberth_sum`]'s terms.
+#[inline(always)]
+fn add_reciprocals(z: C, zs: &[C], mut sum: C) -> C {
+    for &zj in zs {
         let d = z.sub(zj);
         let r = 1.0 / (d.re * d.re + d.im * d.im);
         sum = C::new(sum.re + d.re * r, sum.im - d.im * r);
-    }
-    if !sum.is_finite() {
-        sum = aberth_sum_recip(z, before, after);
     }
     sum
 }
