@@ -189,6 +189,8 @@ struct Scratch {
     radius: Vec<f64>,
     /// Real shadows `[lo, hi]` of the discs meeting the real axis (NaN ends: none).
     shadow: Vec<(f64, f64)>,
+    /// Whether disc `i` is isolated ([`isolated`]): its one root is real and simple.
+    isolated: Vec<bool>,
     /// The brackets found, before they are handed to the caller.
     brackets: Vec<Bracket>,
     /// The undecided parts `(lo, hi]` of the range, sorted and disjoint.
@@ -219,6 +221,7 @@ impl Scratch {
         self.done.reserve(m.saturating_sub(self.done.len()));
         self.radius.reserve(m.saturating_sub(self.radius.len()));
         self.shadow.reserve(m.saturating_sub(self.shadow.len()));
+        self.isolated.reserve(m.saturating_sub(self.isolated.len()));
         self.brackets.reserve(m.saturating_sub(self.brackets.len()));
         self.undecided
             .reserve(m.saturating_sub(self.undecided.len()));
@@ -897,13 +900,31 @@ fn decide(c: &[f64], lo: f64, hi: f64, s: &mut Scratch) {
             (f64::NAN, f64::NAN)
         });
     }
+    s.isolated.clear();
+    let mut every_real_root_isolated = true;
+    for i in 0..n {
+        let on_axis = !s.shadow[i].0.is_nan();
+        let iso = on_axis && isolated(s, i);
+        every_real_root_isolated &= iso || !on_axis;
+        s.isolated.push(iso);
+    }
     for i in 0..n {
         let (a, b) = s.shadow[i];
         // No real point of this disc in [lo, hi] (NaN: none at all).
         if a.is_nan() || b < lo || a > hi {
             continue;
         }
-        if decide_shadow(c, lo, hi, i, s) {
+        // With every real root in an isolated disc, the real roots are exactly one simple root
+        // per real-centred disc, so the sign right of a shadow is `sign(aₙ)` times −1 per
+        // real disc further right (the shadows are disjoint): no evaluation near the root.
+        let right_sign = every_real_root_isolated.then(|| {
+            let right = (0..n)
+                .filter(|&j| s.isolated[j] && s.z[j].re > s.z[i].re)
+                .count();
+            let lead = if c[n] > 0.0 { 1 } else { -1 };
+            if right % 2 == 0 { lead } else { -lead }
+        });
+        if decide_shadow(c, lo, hi, i, right_sign, s) {
             continue;
         }
         if !clusters {
@@ -944,6 +965,23 @@ fn decide(c: &[f64], lo: f64, hi: f64, s: &mut Scratch) {
         }
     }
     s.undecided.truncate(k);
+}
+
+/// Whether disc `i` is isolated: a real centre, and its disc and its shadow certainly apart
+/// from every other disc and shadow. Such a disc is a component of one disc, so it holds
+/// exactly one root, simple, and real (a non-real root would bring its conjugate into the
+/// same disc); no other disc has a real point in its shadow.
+fn isolated(s: &Scratch, i: usize) -> bool {
+    let (a, b) = s.shadow[i];
+    let (z, r) = (s.z[i], s.radius[i]);
+    if z.im != 0.0 {
+        return false;
+    }
+    (0..s.z.len()).all(|j| {
+        let (sa, sb) = s.shadow[j];
+        let shadows_apart = sa.is_nan() || sb < a || sa > b;
+        j == i || (shadows_apart && discs_apart(z, r, s.z[j], s.radius[j]))
+    })
 }
 
 /// Whether discs `i` and `j` may share a root's neighbourhood: their discs or their shadows
@@ -1075,28 +1113,35 @@ fn derivative_root(c: &[f64], k: usize, mut x: f64, d: &mut Vec<f64>) -> f64 {
 }
 
 /// Whether the disc `i`, whose shadow `(a, b)` meets `[lo, hi]`, decides its part of the
-/// range: a real centre, a disc and shadow apart from every other, certified opposite signs
-/// at `a` and `b` (exactly one simple root in `(a, b)`, and no other real root there). Its
-/// bracket, cut to the range with the certified sign at a cut end, goes to `s.brackets`
-/// when the root is in `(lo, hi]`; equal signs at the cut put the root outside the range.
-fn decide_shadow(c: &[f64], lo: f64, hi: f64, i: usize, s: &mut Scratch) -> bool {
+/// range: [`isolated`] (exactly one simple root in `(a, b)`, and no other real root there),
+/// with opposite signs at `a` and `b` — certified by evaluation, or, given `right_sign`
+/// (the sign of `p` right of the shadow, known when every real root is in an isolated
+/// disc), implied: `p` changes sign exactly once in `(a, b)`, and not at the ends, which lie
+/// outside every disc. Its bracket, cut to the range with the certified sign at a cut end,
+/// goes to `s.brackets` when the root is in `(lo, hi]`; equal signs at the cut put the root
+/// outside the range.
+fn decide_shadow(
+    c: &[f64],
+    lo: f64,
+    hi: f64,
+    i: usize,
+    right_sign: Option<i8>,
+    s: &mut Scratch,
+) -> bool {
     let (a, b) = s.shadow[i];
-    let (z, r) = (s.z[i], s.radius[i]);
-    if z.im != 0.0 {
+    if !s.isolated[i] {
         return false;
     }
-    for j in 0..s.z.len() {
-        if j == i {
-            continue;
+    let (s_a, s_b) = match right_sign {
+        Some(s_b) => {
+            debug_assert!(
+                certified_sign(c, b, 0.0) != -s_b && certified_sign(c, a, 0.0) != s_b,
+                "a derived shadow sign contradicts a certified one"
+            );
+            (-s_b, s_b)
         }
-        let (sa, sb) = s.shadow[j];
-        let shadows_apart = sa.is_nan() || sb < a || sa > b;
-        if !(shadows_apart && discs_apart(z, r, s.z[j], s.radius[j])) {
-            return false;
-        }
-    }
-    let s_a = certified_sign(c, a, 0.0);
-    let s_b = certified_sign(c, b, 0.0);
+        None => (certified_sign(c, a, 0.0), certified_sign(c, b, 0.0)),
+    };
     if s_a == 0 || s_b != -s_a {
         return false;
     }
@@ -1195,6 +1240,40 @@ mod tests {
             "decided by the discs: {stats:?}"
         );
         assert_eq!(stats.subdivisions, 0, "no subdivision ran");
+    }
+
+    /// Where every real root is in an isolated disc, the signs at a bracket's ends are
+    /// implied (counted from `sign(aₙ)`), not evaluated: they must be the exact signs of the
+    /// stored polynomial there, checked in rational arithmetic.
+    #[test]
+    fn implied_bracket_signs_are_the_exact_signs() {
+        let mut polys = vec![(wilkinson(20).to_f64(), 0.0, 21.0)];
+        polys.extend((0..3).map(|seed| (kac(40, seed), -2.0, 2.0)));
+        polys.push((chebyshev(12).to_f64(), -1.5, 1.5));
+        let mut checked = 0;
+        for (p, lo, hi) in polys {
+            let c = p.coeffs();
+            let exact = p.to_rat().expect("finite coefficients");
+            let exact_sign = |x: f64| {
+                let v = exact.eval(&rat_from_f64(x).expect("finite"));
+                i8::from(v > Rat::from_integer(0.into()))
+                    - i8::from(v < Rat::from_integer(0.into()))
+            };
+            let mut brackets = Vec::new();
+            assert!(real_pieces(c, lo, hi, |piece| match piece {
+                Piece::Root(b) => brackets.push(b),
+                other => panic!("degree {}: not decided by the discs: {other:?}", p.degree()),
+            }));
+            checked += brackets.len();
+            for b in brackets {
+                assert_eq!(exact_sign(b.lo), b.s_lo, "degree {}: {b:?}", p.degree());
+                assert_eq!(exact_sign(b.hi), -b.s_lo, "degree {}: {b:?}", p.degree());
+            }
+        }
+        assert!(
+            checked >= 32,
+            "Wilkinson's 20 roots and T₁₂'s 12 at least: {checked}"
+        );
     }
 
     #[test]
