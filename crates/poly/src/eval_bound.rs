@@ -115,16 +115,28 @@ fn horner_bounded_pair(c: &[f64], x: f64, y: f64) -> ((f64, f64), (f64, f64)) {
 /// transformations are exact only without underflow).
 #[inline]
 pub(crate) fn comp_horner_bounded(c: &[f64], x: f64) -> (f64, f64) {
+    let (res, err, _) = comp_horner_bounded_and_derivative(c, x);
+    (res, err)
+}
+
+/// [`comp_horner_bounded`], and `p'(x)` by plain Horner in the same loop: the first
+/// (uncompensated) parts of the compensated scheme are exactly the plain Horner values, so
+/// the derivative is bit for bit that of [`horner_derivative_and_bound`], without a second
+/// pass over the coefficients (the inclusion discs' polish needs both at every step).
+#[inline]
+pub(crate) fn comp_horner_bounded_and_derivative(c: &[f64], x: f64) -> (f64, f64, f64) {
     let ax = x.abs();
     let n = c.len();
     let Some(&top) = c.last() else {
-        return (0.0, 0.0);
+        return (0.0, 0.0, 0.0);
     };
     let mut s = top;
+    let mut d = 0.0;
     let mut comp = 0.0;
     let mut mag = top.abs();
     let mut z = 1.0;
     for &ci in c.iter().rev().skip(1) {
+        d = d * x + s;
         // TwoProduct (exact with fma) and TwoSum (Knuth).
         let p = s * x;
         let pi = s.mul_add(x, -p);
@@ -142,7 +154,7 @@ pub(crate) fn comp_horner_bounded(c: &[f64], x: f64) -> (f64, f64) {
     let s_up = mag / (1.0 - g);
     let err = (u * res.abs() + g * g * s_up) / (1.0 - u) * (1.0 + 8.0 * f64::EPSILON)
         + 8.0 * ETA * z * (n as f64 + 1.0);
-    (res, err)
+    (res, err, d)
 }
 
 #[inline]
@@ -316,6 +328,22 @@ mod tests {
                 "comp {x}"
             );
         }
+    }
+
+    /// The derivative taken along the compensated scheme is the plain Horner derivative
+    /// bit for bit (the polish's steps, and so every answer, stay what they were).
+    #[test]
+    fn compensated_derivative_is_the_plain_horner_derivative() {
+        let p = Poly::<f64>::from_roots(&[0.1, 0.2, 0.3, 0.4, 1.7, -2.9, 1e3]);
+        let c = p.coeffs();
+        for x in [0.1, -0.15, 0.3000001, 0.4 + 1e-12, 2.0, -5.0, 1e3, -1e-300, 0.0] {
+            let (v, err, d) = comp_horner_bounded_and_derivative(c, x);
+            assert_eq!((v, err), comp_horner_bounded(c, x), "value at {x}");
+            let (_, plain_d, _) = horner_derivative_and_bound(c, x, x);
+            assert_eq!(d.to_bits(), plain_d.to_bits(), "derivative at {x}");
+        }
+        let constant = [3.5];
+        assert_eq!(comp_horner_bounded_and_derivative(&constant, 2.0).2, 0.0);
     }
 
     #[test]

@@ -37,7 +37,8 @@ use std::cell::Cell;
 
 use crate::bernstein::Bracket;
 use crate::eval_bound::{
-    certified_sign, comp_horner_bounded, horner_bounded, horner_derivative_and_bound,
+    certified_sign, comp_horner_bounded, comp_horner_bounded_and_derivative, horner_bounded,
+    horner_derivative_and_bound,
 };
 use crate::int_poly::IntPoly;
 use crate::rescale::{ldexp, with_rescaled};
@@ -606,12 +607,11 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
                 continue;
             }
             let x = s.z[i].re;
-            let (v, err) = comp_horner_bounded(c, x);
+            let (v, err, d) = comp_horner_bounded_and_derivative(c, x);
             if v.abs() <= err && err.is_finite() {
                 s.done[i] = true;
                 continue;
             }
-            let (_, d, _) = horner_derivative_and_bound(c, x, x);
             let (v, err, d) = if err.is_finite() && d.is_finite() {
                 (v, err, d)
             } else {
