@@ -11,9 +11,10 @@
 //! cancellation on exactly the hard cases (POV-Ray's quartic is off by ±0.1 at scale 1e7),
 //! and the Bernstein path is certified and fast enough (see `paper-notes/isolation.md`).
 
-use crate::eval_bound::certified_sign;
+use crate::eval_bound::{certified_sign, horner_bounded, sign_if_certain};
 use crate::refine::half_tol;
-use crate::root_options::Tolerance;
+use crate::root_options::{IsolationMethod, RootOptions, Tolerance};
+use crate::stats::RootStats;
 use crate::univariate::UNIT_ROUNDOFF;
 
 /// Relative error bound of the computed discriminant `c1² − 4·c0·c2`: three roundings on each
@@ -77,16 +78,35 @@ pub fn linear_root_in(c0: f64, c1: f64, t_min: f64, t_max: f64) -> Option<Option
     linear_smallest(&[c0, c1], t_min, t_max)
 }
 
+/// [`certified_sign`] of the quadratic `c` at `x`: its first tier (Horner with a rigorous
+/// bound, [`horner_bounded`]) compiled here for three coefficients, and the whole function,
+/// which starts with the same evaluation, only when that tier cannot decide. So the sign is
+/// `certified_sign`'s bit for bit; the general function is not inlined and loops over a slice,
+/// ≈ 74 instructions a call against ≈ 25 (issue 12, ninth pass: two to four calls a sphere
+/// query).
+#[inline(always)]
+fn certified_sign3(c: &[f64; 3], x: f64) -> i8 {
+    let (v, err) = horner_bounded(c, x);
+    match sign_if_certain(v, err) {
+        0 => certified_sign(c, x, 0.0),
+        s => s,
+    }
+}
+
 /// The smallest root of `c0 + c1·x + c2·x²` in `(t_min, t_max]`: `Some(Some(r))` with
 /// `|r − root| ≤ max(tol.abs, tol.rel·|root|)`, `Some(None)` when there is certainly none,
 /// `None` when undecided (near-double root, a root within the tolerance of an interval end,
-/// or a tolerance below what `f64` can certify there). Requires `c2 ≠ 0`, finite input.
+/// or a tolerance below what `f64` can certify there, and for a slice that is not three
+/// coefficients). Requires `c2 ≠ 0`, finite input.
 pub(crate) fn quadratic_smallest(
     c: &[f64],
     t_min: f64,
     t_max: f64,
     tol: Tolerance,
 ) -> Option<Option<f64>> {
+    // As an array, so that the evaluations below are compiled for three coefficients
+    // (unrolled, their error bounds' constants folded).
+    let c: &[f64; 3] = c.try_into().ok()?;
     let (c0, c1, c2) = (c[0], c[1], c[2]);
     // Δ = c1² − 4·c0·c2 with an error bound relative to the sum of the magnitudes; the
     // discriminant only decides "no real root" here.
@@ -131,7 +151,7 @@ pub(crate) fn quadratic_smallest(
         } else {
             (-s_out, s_out)
         };
-        if certified_sign(c, lo, 0.0) != want_lo || certified_sign(c, hi, 0.0) != want_hi {
+        if certified_sign3(c, lo) != want_lo || certified_sign3(c, hi) != want_hi {
             return None;
         }
         // Now the root is certainly in (lo, hi), and (for the larger root) the smaller one
@@ -148,6 +168,52 @@ pub(crate) fn quadratic_smallest(
         return None;
     }
     Some(None)
+}
+
+/// The quadratic closed form of `Poly::try_smallest_root_slack` run on borrowed
+/// coefficients, without the per-thread copy that the general path works on: `Some` with
+/// the answer, and the statistics counted, when a query of a quadratic without slack is
+/// answered there (the closed form decides, or the range is empty), exactly as
+/// `try_smallest_root_slack` answers and counts it; `None`, with nothing counted, in every
+/// other case (another degree, a slack, another method, invalid input, or an undecided
+/// closed form), for the caller to run the general path.
+///
+/// Why: a sphere's ray is a quadratic, and around the closed form's ≈ 280 instructions the
+/// copy into the per-thread `Poly` (a thread-local access, the copy and the trim) and the
+/// general entry's checks took ≈ 250 more, half of a sphere query on the SPD sphereflakes
+/// (issue 12, ninth pass: callgrind, balls-s1 at 100², 526 → 301 instructions a query with
+/// [`certified_sign3`]).
+pub(crate) fn quadratic_smallest_borrowed(
+    c: &[f64],
+    t_min: f64,
+    t_max: f64,
+    opts: &RootOptions,
+    stats: Option<&mut RootStats>,
+) -> Option<Option<f64>> {
+    // The checks of `validate` and the closed-form conditions of `smallest_root_inner`,
+    // for a view whose last coefficient is not zero (`PolyRef::new`).
+    let c: &[f64; 3] = c.try_into().ok()?;
+    if !(opts.closed_form
+        && opts.isolation == IsolationMethod::Bernstein
+        && c.iter().all(|x| x.is_finite())
+        && !(t_min.is_nan() || t_max.is_nan())
+        && opts.tolerance_is_valid())
+    {
+        return None;
+    }
+    // An empty range answers "none" without the closed form, as `validate` does.
+    let closed = if t_min < t_max {
+        Some(quadratic_smallest(c, t_min, t_max, opts.tolerance())?)
+    } else {
+        None
+    };
+    let found = closed.flatten();
+    if let Some(s) = stats {
+        s.count_query(2);
+        s.closed_form += u64::from(closed.is_some());
+        s.with_root += u64::from(found.is_some());
+    }
+    Some(found)
 }
 
 #[cfg(test)]

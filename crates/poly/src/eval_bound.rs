@@ -158,7 +158,7 @@ pub(crate) fn comp_horner_bounded_and_derivative(c: &[f64], x: f64) -> (f64, f64
 }
 
 #[inline]
-fn sign_if_certain(v: f64, err: f64) -> i8 {
+pub(crate) fn sign_if_certain(v: f64, err: f64) -> i8 {
     if v > err {
         1
     } else if -v > err {

@@ -24,6 +24,7 @@
 use std::cell::Cell;
 use std::thread::LocalKey;
 
+use crate::closed_form::quadratic_smallest_borrowed;
 use crate::root_error::RootError;
 use crate::root_interval::RootInterval;
 use crate::root_options::RootOptions;
@@ -354,7 +355,21 @@ impl<'p, 's> RootQuery<'p, 's> {
     ///
     /// # Errors
     /// As [`Poly::try_smallest_root`].
-    pub fn smallest(self) -> Result<Option<f64>, RootError> {
+    pub fn smallest(mut self) -> Result<Option<f64>, RootError> {
+        // A quadratic on borrowed coefficients is answered in closed form on the slice when
+        // it can be, without the per-thread copy (`quadratic_smallest_borrowed`).
+        if self.owned.is_none()
+            && !self.slack.is_some()
+            && let Some(found) = quadratic_smallest_borrowed(
+                self.coeffs,
+                self.range.0,
+                self.range.1,
+                &self.opts,
+                self.stats.as_deref_mut(),
+            )
+        {
+            return Ok(found);
+        }
         self.run(|p, (lo, hi), o, sl, s| p.try_smallest_root_slack(lo, hi, o, sl, s))
     }
 
@@ -472,6 +487,60 @@ mod tests {
             PolyRef::new(&[3.0]).root_radius_within(&tiny),
             None,
             "a constant"
+        );
+    }
+
+    /// A quadratic on borrowed coefficients, answered on the slice without the per-thread
+    /// copy (issue 12, ninth pass), gives the owned query's answer, error and statistics on
+    /// random quadratics and ranges (roots inside, outside, at the ends, double roots the
+    /// closed form leaves to the general path, no real roots), empty and infinite ranges, NaN
+    /// ends, invalid tolerances, other methods and the closed form switched off.
+    #[test]
+    fn borrowed_quadratic_answers_as_the_owned_query() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12);
+        let mut decided_by_closed_form = 0;
+        for k in 0..20_000 {
+            let (r1, r2) = (rng.gen_range(-4.0..4.0f64), rng.gen_range(-4.0..4.0f64));
+            let a = rng.gen_range(0.1..3.0f64) * if k % 2 == 0 { 1.0 } else { -1.0 };
+            let c = match k % 5 {
+                // No real roots.
+                0 => [a * (r1 * r1 + 1.0), 0.0, a],
+                // A double root.
+                1 => [a * r1 * r1, -2.0 * a * r1, a],
+                _ => [a * r1 * r2, -a * (r1 + r2), a],
+            };
+            let (mut lo, mut hi) = (rng.gen_range(-5.0..5.0f64), rng.gen_range(-5.0..5.0f64));
+            match k % 11 {
+                0 => lo = r1,
+                1 => hi = r2,
+                2 => hi = f64::INFINITY,
+                3 => lo = f64::NEG_INFINITY,
+                4 => lo = f64::NAN,
+                _ => {}
+            }
+            let mut o = RootOptions::new(10f64.powi(-rng.gen_range(0..15)));
+            match k % 13 {
+                0 => o.x_tol = -1.0,
+                1 => o.closed_form = false,
+                2 => o.isolation = crate::IsolationMethod::Sturm,
+                3 => o.x_tol = hi - lo,
+                _ => {}
+            }
+            let (mut borrowed, mut owned) = (RootStats::default(), RootStats::default());
+            let got = PolyRef::new(&c)
+                .roots(lo, hi, &o)
+                .stats(&mut borrowed)
+                .smallest();
+            let p = Poly::new(c.to_vec());
+            let want = p.try_smallest_root(lo, hi, &o, &mut owned);
+            assert_eq!(got, want, "{c:?} on ({lo}, {hi}] with {o:?}");
+            assert_eq!(borrowed, owned, "statistics of {c:?} on ({lo}, {hi}]");
+            decided_by_closed_form += owned.closed_form;
+        }
+        assert!(
+            decided_by_closed_form > 5_000,
+            "the closed form decides most: {decided_by_closed_form}"
         );
     }
 

@@ -149,7 +149,7 @@ pub struct Implicit<F> {
     underflow_weight: f64,
     /// The highest degree in `t` of a restriction along a direction whose non-zero
     /// components are flagged by the bits of the index (x: 1, y: 2, z: 4)
-    /// ([`Poly3::restriction_degree_bound`]; [`Implicit::dropped_degree`]).
+    /// ([`Poly3::restriction_degree_bounds`]; [`Implicit::dropped_degree`]).
     ray_degree: [u32; 8],
     /// The relative factor of the double-double tier's slack ([`dd_slack_rel`]).
     dd_rel: f64,
@@ -176,10 +176,7 @@ impl<F: ImplicitFn> Implicit<F> {
             underflow_weight: f.restriction_underflow_weight(),
             dd_rel: dd_slack_rel(f.poly().restriction_rounding_steps(), degree),
             dd_underflow_weight: 4.0 * f.poly().restriction_underflow_weight(),
-            ray_degree: std::array::from_fn(|bits| {
-                f.poly()
-                    .restriction_degree_bound([bits & 1 != 0, bits & 2 != 0, bits & 4 != 0])
-            }),
+            ray_degree: f.poly().restriction_degree_bounds(),
             f,
             weights,
             rounding_steps,
