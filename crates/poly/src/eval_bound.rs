@@ -336,7 +336,17 @@ mod tests {
     fn compensated_derivative_is_the_plain_horner_derivative() {
         let p = Poly::<f64>::from_roots(&[0.1, 0.2, 0.3, 0.4, 1.7, -2.9, 1e3]);
         let c = p.coeffs();
-        for x in [0.1, -0.15, 0.3000001, 0.4 + 1e-12, 2.0, -5.0, 1e3, -1e-300, 0.0] {
+        for x in [
+            0.1,
+            -0.15,
+            0.3000001,
+            0.4 + 1e-12,
+            2.0,
+            -5.0,
+            1e3,
+            -1e-300,
+            0.0,
+        ] {
             let (v, err, d) = comp_horner_bounded_and_derivative(c, x);
             assert_eq!((v, err), comp_horner_bounded(c, x), "value at {x}");
             let (_, plain_d, _) = horner_derivative_and_bound(c, x, x);
