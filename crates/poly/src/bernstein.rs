@@ -214,41 +214,9 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
             return None;
         }
         let a = t_min;
-        // Step 1: Taylor shift and scaling, q(u) = p(a + w·u), by Horner's rule on
-        // polynomials: out ← out·(a + w·u) + c_k. Per step a path meets one product and at
-        // most two sums: 3 roundings per step.
         let mut vs = S::zeroed(n + 1);
-        let v = vs.at_mut();
-        v[0] = p[n];
+        let base_ops = bernstein_on(p, a, w, vs.at_mut());
         let (aa, aw) = (a.abs(), w.abs());
-        if a == 0.0 {
-            // No shift, only the scaling q_j = c_j·w^j: at most j + 1 ≤ n + 1 roundings on
-            // any path, within the 3n the bound allows for this step (the tracer restricts
-            // its polynomials at the search start, so this is its common case).
-            let mut wj = 1.0;
-            for (vj, &c) in v.iter_mut().zip(p) {
-                *vj = c * wj;
-                wj *= w;
-            }
-        } else {
-            for k in (0..n).rev() {
-                let len = n - k;
-                for i in (1..=len).rev() {
-                    v[i] = v[i] * a + v[i - 1] * w;
-                }
-                v[0] = v[0] * a + p[k];
-            }
-        }
-        // Step 2: power basis on [0, 1] → Bernstein basis: bᵢ = Σ_{j≤i} C(i,j)/C(n,j)·q_j,
-        // as a division by C(n,j) (two roundings: the binomial and the quotient) followed by
-        // n passes of neighbour sums (one rounding each).
-        let binom_ops = binomial_row_into(n, v);
-        for r in 1..=n {
-            for i in (r..=n).rev() {
-                v[i] += v[i - 1];
-            }
-        }
-        let base_ops = 3 * n as u32 + binom_ops + n as u32;
         // Underflow: each rounding may add up to ETA absolutely; later steps multiply such an
         // error by at most (|a| + |w|) per Horner step and by at most n + 1 in the basis
         // change (de Casteljau only averages). Each output depends on at most (n+1)² roundings
@@ -890,6 +858,73 @@ const RECIP_BINOM: [[f64; RECIP_ROWS]; RECIP_ROWS] = {
 };
 
 /// Divides `v[j]` by `C(n, j)`; returns the roundings this adds on any path.
+/// The Bernstein coefficients of `p` (lowest first, degree `n = p.len() − 1`) on
+/// `[a, a + w]`, written into `v` (`n + 1` slots), in plain `f64`; returns the number of
+/// roundings on any path ([`BernsteinIsolator::new`] bounds the error with it).
+fn bernstein_on(p: &[f64], a: f64, w: f64, v: &mut [f64]) -> u32 {
+    let n = p.len() - 1;
+    // Step 1: Taylor shift and scaling, q(u) = p(a + w·u), by Horner's rule on
+    // polynomials: out ← out·(a + w·u) + c_k. Per step a path meets one product and at
+    // most two sums: 3 roundings per step.
+    v[0] = p[n];
+    if a == 0.0 {
+        // No shift, only the scaling q_j = c_j·w^j: at most j + 1 ≤ n + 1 roundings on
+        // any path, within the 3n the bound allows for this step (the tracer restricts
+        // its polynomials at the search start, so this is its common case).
+        let mut wj = 1.0;
+        for (vj, &c) in v.iter_mut().zip(p) {
+            *vj = c * wj;
+            wj *= w;
+        }
+    } else {
+        for k in (0..n).rev() {
+            let len = n - k;
+            for i in (1..=len).rev() {
+                v[i] = v[i] * a + v[i - 1] * w;
+            }
+            v[0] = v[0] * a + p[k];
+        }
+    }
+    // Step 2: power basis on [0, 1] → Bernstein basis: bᵢ = Σ_{j≤i} C(i,j)/C(n,j)·q_j,
+    // as a division by C(n,j) (two roundings: the binomial and the quotient) followed by
+    // n passes of neighbour sums (one rounding each).
+    let binom_ops = binomial_row_into(n, v);
+    for r in 1..=n {
+        for i in (r..=n).rev() {
+            v[i] += v[i - 1];
+        }
+    }
+    3 * n as u32 + binom_ops + n as u32
+}
+
+/// Whether `p` has few roots on `(lo, hi]` by a rough count: at most one sign variation of
+/// its Bernstein coefficients there, computed in plain `f64` without an error bound
+/// (Descartes' rule bounds the roots by the variations in exact arithmetic). A heuristic
+/// for choosing a path ([`crate::isolate`]'s all-roots queries: one or no root is found
+/// by a subdivision's first classification far more cheaply than by approximating every
+/// complex root), never for an answer; `false` for an infinite end or a non-finite
+/// coefficient.
+pub(crate) fn few_roots_likely(p: &[f64], lo: f64, hi: f64) -> bool {
+    let w = hi - lo;
+    if p.len() < 2 || !(lo.is_finite() && w.is_finite()) {
+        return false;
+    }
+    let mut v: SmallVec<[f64; 32]> = SmallVec::from_elem(0.0, p.len());
+    bernstein_on(p, lo, w, &mut v);
+    let mut changes = 0;
+    let mut last = 0.0f64;
+    for &b in &v {
+        if !b.is_finite() {
+            return false;
+        }
+        if b != 0.0 {
+            changes += usize::from(last != 0.0 && (b > 0.0) != (last > 0.0));
+            last = b;
+        }
+    }
+    changes <= 1
+}
+
 fn binomial_row_into(n: usize, v: &mut [f64]) -> u32 {
     if n < RECIP_ROWS {
         // Multiplication by the rounded reciprocal: two roundings (the table entry and the

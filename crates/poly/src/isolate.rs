@@ -14,7 +14,7 @@
 
 use std::cell::Cell;
 
-use crate::bernstein::Bracket;
+use crate::bernstein::{Bracket, few_roots_likely};
 use crate::certified::{CertifiedSearch, Found, end_signs};
 use crate::closed_form::{linear_smallest, quadratic_smallest};
 use crate::eval_bound::certified_sign;
@@ -758,6 +758,11 @@ fn inclusion_first<V>(
     let Range::Search { lo, hi } = prepare(p, a, b, opts)? else {
         return Ok(false);
     };
+    if few_roots_likely(p.coeffs(), lo, hi) {
+        // A narrow range with one root or none (the Gröbner path's eliminants on a
+        // sub-patch): the subdivision's first classification is cheaper than the discs.
+        return Ok(false);
+    }
     // One query for the statistics: at most one exact fallback, though several parts may
     // have needed one (as around an exact root 0).
     let fallbacks = stats.exact_fallbacks;
