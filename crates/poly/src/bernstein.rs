@@ -909,7 +909,7 @@ pub(crate) fn few_roots_likely(p: &[f64], lo: f64, hi: f64) -> bool {
     if p.len() < 2 || !(lo.is_finite() && w.is_finite()) {
         return false;
     }
-    let mut v: SmallVec<[f64; 32]> = SmallVec::from_elem(0.0, p.len());
+    let mut v: SmallVec<[f64; 64]> = SmallVec::from_elem(0.0, p.len());
     bernstein_on(p, lo, w, &mut v);
     let mut changes = 0;
     let mut last = 0.0f64;
