@@ -564,7 +564,10 @@ mod tests {
         // Another range, so possibly another path (one root on (−10, 0] goes to subdivision,
         // four on (−10, 10) to the discs): the same root within the tolerance.
         assert_eq!((out.len(), out[0]), (2, 99.0), "appended");
-        assert!((out[1] - want[0]).abs() <= 1e-13, "{out:?} against {want:?}");
+        assert!(
+            (out[1] - want[0]).abs() <= 1e-13,
+            "{out:?} against {want:?}"
+        );
         assert_eq!(
             PolyRef::new(&[0.0, 0.0]).roots(0.0, 1.0, &o).smallest(),
             Err(RootError::ZeroPolynomial),
