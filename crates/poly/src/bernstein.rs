@@ -857,7 +857,6 @@ const RECIP_BINOM: [[f64; RECIP_ROWS]; RECIP_ROWS] = {
     t
 };
 
-/// Divides `v[j]` by `C(n, j)`; returns the roundings this adds on any path.
 /// The Bernstein coefficients of `p` (lowest first, degree `n = p.len() − 1`) on
 /// `[a, a + w]`, written into `v` (`n + 1` slots), in plain `f64`; returns the number of
 /// roundings on any path ([`BernsteinIsolator::new`] bounds the error with it).
@@ -925,6 +924,7 @@ pub(crate) fn few_roots_likely(p: &[f64], lo: f64, hi: f64) -> bool {
     changes <= 1
 }
 
+/// Divides `v[j]` by `C(n, j)`; returns the roundings this adds on any path.
 fn binomial_row_into(n: usize, v: &mut [f64]) -> u32 {
     if n < RECIP_ROWS {
         // Multiplication by the rounded reciprocal: two roundings (the table entry and the

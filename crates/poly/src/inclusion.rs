@@ -1276,6 +1276,27 @@ mod tests {
         );
     }
 
+    /// A range holding one root of Wilkinson-20, or none, is answered by subdivision
+    /// without the discs (`few_roots_likely`), and agrees with the oracle; the whole range
+    /// still goes to the discs.
+    #[test]
+    fn ranges_with_one_root_or_none_skip_the_discs() {
+        let p = wilkinson(20).to_f64();
+        for (lo, hi) in [(4.5, 5.5), (4.9, 5.1), (5.2, 5.8), (0.0, 0.5)] {
+            let stats = check(&p, lo, hi);
+            assert_eq!(
+                (stats.inclusion_decided, stats.inclusion_undecided),
+                (0, 0),
+                "({lo}, {hi}]: {stats:?}"
+            );
+        }
+        assert_eq!(
+            check(&p, 0.0, 21.0).inclusion_decided,
+            1,
+            "all twenty: the discs"
+        );
+    }
+
     #[test]
     fn kac_planted_and_chebyshev_degree_40_agree_with_the_oracle() {
         for seed in 0..3 {
