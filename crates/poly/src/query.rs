@@ -565,7 +565,7 @@ mod tests {
         // four on (−10, 10) to the discs): the same root within the tolerance.
         assert_eq!((out.len(), out[0]), (2, 99.0), "appended");
         assert!(
-            (out[1] - want[0]).abs() <= 1e-13,
+            (out[1] - want[0]).abs() <= o.x_tol,
             "{out:?} against {want:?}"
         );
         assert_eq!(
