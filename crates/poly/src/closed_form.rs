@@ -13,8 +13,7 @@
 
 use crate::eval_bound::{certified_sign, horner_bounded, sign_if_certain};
 use crate::refine::half_tol;
-use crate::root_options::{IsolationMethod, RootOptions, Tolerance};
-use crate::stats::RootStats;
+use crate::root_options::Tolerance;
 use crate::univariate::UNIT_ROUNDOFF;
 
 /// Relative error bound of the computed discriminant `c1² − 4·c0·c2`: three roundings on each
@@ -168,52 +167,6 @@ pub(crate) fn quadratic_smallest(
         return None;
     }
     Some(None)
-}
-
-/// The quadratic closed form of `Poly::try_smallest_root_slack` run on borrowed
-/// coefficients, without the per-thread copy that the general path works on: `Some` with
-/// the answer, and the statistics counted, when a query of a quadratic without slack is
-/// answered there (the closed form decides, or the range is empty), exactly as
-/// `try_smallest_root_slack` answers and counts it; `None`, with nothing counted, in every
-/// other case (another degree, a slack, another method, invalid input, or an undecided
-/// closed form), for the caller to run the general path.
-///
-/// Why: a sphere's ray is a quadratic, and around the closed form's ≈ 280 instructions the
-/// copy into the per-thread `Poly` (a thread-local access, the copy and the trim) and the
-/// general entry's checks took ≈ 250 more, half of a sphere query on the SPD sphereflakes
-/// (issue 12, ninth pass: callgrind, balls-s1 at 100², 526 → 301 instructions a query with
-/// [`certified_sign3`]).
-pub(crate) fn quadratic_smallest_borrowed(
-    c: &[f64],
-    t_min: f64,
-    t_max: f64,
-    opts: &RootOptions,
-    stats: Option<&mut RootStats>,
-) -> Option<Option<f64>> {
-    // The checks of `validate` and the closed-form conditions of `smallest_root_inner`,
-    // for a view whose last coefficient is not zero (`PolyRef::new`).
-    let c: &[f64; 3] = c.try_into().ok()?;
-    if !(opts.closed_form
-        && opts.isolation == IsolationMethod::Bernstein
-        && c.iter().all(|x| x.is_finite())
-        && !(t_min.is_nan() || t_max.is_nan())
-        && opts.tolerance_is_valid())
-    {
-        return None;
-    }
-    // An empty range answers "none" without the closed form, as `validate` does.
-    let closed = if t_min < t_max {
-        Some(quadratic_smallest(c, t_min, t_max, opts.tolerance())?)
-    } else {
-        None
-    };
-    let found = closed.flatten();
-    if let Some(s) = stats {
-        s.count_query(2);
-        s.closed_form += u64::from(closed.is_some());
-        s.with_root += u64::from(found.is_some());
-    }
-    Some(found)
 }
 
 #[cfg(test)]

@@ -21,7 +21,7 @@ use crate::eval_bound::certified_sign;
 use crate::exact_oracle::{ExactOracle, SquareFreeSign};
 use crate::inclusion::{INCLUSION_MIN_DEGREE, Piece, real_pieces};
 use crate::multiprec::refine_wide;
-use crate::query::{Slack, with_scratch_poly};
+use crate::query::{Slack, Stored, with_scratch_poly};
 use crate::refine::{
     Refined, bisect_rational_to_f64, half_tol, probe_by, refine_bracket, refine_exact_f64,
 };
@@ -32,7 +32,9 @@ use crate::scalar::{Rat, rat_from_f64, rat_to_f64};
 use crate::stam::StamSturm;
 use crate::stats::RootStats;
 use crate::sturm::{SturmSequence, check_finite};
-use crate::univariate::{Poly, QPoly, ROOT_BOUND_MARGIN, UNIT_ROUNDOFF};
+use crate::univariate::{
+    Poly, QPoly, ROOT_BOUND_MARGIN, UNIT_ROUNDOFF, cauchy_bound_of, root_bound_of,
+};
 
 /// Most bisections of a heuristic (floating-point Sturm) isolation before it gives up: the
 /// interval is then narrower than 2^-200 of the original, far below `f64` resolution.
@@ -48,9 +50,9 @@ enum Range {
 
 /// Validates a query: `Ok(false)` when there is nothing to search (empty interval or a
 /// non-zero constant).
-fn validate(p: &Poly<f64>, t_min: f64, t_max: f64, opts: &RootOptions) -> Result<bool, RootError> {
-    check_finite(p)?;
-    if p.is_zero() {
+fn validate(c: &[f64], t_min: f64, t_max: f64, opts: &RootOptions) -> Result<bool, RootError> {
+    check_finite(c)?;
+    if c.is_empty() {
         return Err(RootError::ZeroPolynomial);
     }
     if t_min.is_nan() || t_max.is_nan() {
@@ -59,25 +61,24 @@ fn validate(p: &Poly<f64>, t_min: f64, t_max: f64, opts: &RootOptions) -> Result
     if !opts.tolerance_is_valid() {
         return Err(RootError::InvalidTolerance);
     }
-    Ok(p.degree() > 0 && t_min < t_max)
+    Ok(c.len() > 1 && t_min < t_max)
 }
 
 /// Validates a query and narrows `(t_min, t_max]` to the root bound.
-fn prepare(p: &Poly<f64>, t_min: f64, t_max: f64, opts: &RootOptions) -> Result<Range, RootError> {
-    if !validate(p, t_min, t_max, opts)? {
+fn prepare(c: &[f64], t_min: f64, t_max: f64, opts: &RootOptions) -> Result<Range, RootError> {
+    if !validate(c, t_min, t_max, opts)? {
         return Ok(Range::Empty);
     }
     let (mut lo, mut hi) = (t_min, t_max);
     // Cauchy's bound first (divisions only); the tighter `root_bound` (with Fujiwara's, which
     // takes n `powf`s) only when the range reaches beyond it.
-    let c = p.coeffs();
     let n = c.len() - 1;
     let inv_lc = 1.0 / c[n].abs();
     let cauchy = c[..n].iter().fold(0.0f64, |m, x| m.max(x.abs() * inv_lc));
     let cauchy = (1.0 + cauchy) * ROOT_BOUND_MARGIN;
     // An infinite Cauchy bound (a quotient overflowed) bounds nothing: `root_bound` may.
     if !(cauchy.is_finite() && lo >= -cauchy && hi <= cauchy)
-        && let Some(b) = p.root_bound()
+        && let Some(b) = root_bound_of(c)
     {
         // Every real root is in [−B, B]: the open end moves just below −B.
         if lo < -b {
@@ -124,13 +125,13 @@ fn around_zero<V>(
 /// to a point (the teapot's lid apex and bottom): measured on the teapot corpus, every exact
 /// fallback was such a factor (`paper-notes/isolation.md`). Dividing by `x^k` is exact, so
 /// the answer stays that of the stored polynomial.
-fn zero_root_order(p: &Poly<f64>, opts: &RootOptions, slack: Slack<'_>) -> usize {
+fn zero_root_order(c: &[f64], opts: &RootOptions, slack: Slack<'_>) -> usize {
     // With a value slack the stored zeros are not the true polynomial's.
     if opts.isolation != IsolationMethod::Bernstein || slack.is_some() {
         return 0;
     }
-    let k = p.coeffs().iter().take_while(|c| **c == 0.0).count();
-    if k < p.coeffs().len() { k } else { 0 }
+    let k = c.iter().take_while(|x| **x == 0.0).count();
+    if k < c.len() { k } else { 0 }
 }
 
 thread_local! {
@@ -156,11 +157,11 @@ const CAUCHY_ROUNDING_MARGIN: f64 = 1.0 + 8.0 * UNIT_ROUNDOFF;
 /// nothing measurable (the ray tracer's unbounded surfaces query `(0, ∞]` on every ray;
 /// `paper-notes/implicit-surfaces.md`). The range is unchanged when both ends are finite or
 /// there is no bound (constants, the zero polynomial).
-fn cauchy_narrowed(p: &Poly<f64>, lo: f64, hi: f64) -> (f64, f64) {
+fn cauchy_narrowed(c: &[f64], lo: f64, hi: f64) -> (f64, f64) {
     if lo.is_finite() && hi.is_finite() {
         return (lo, hi);
     }
-    let Some(b) = p.cauchy_bound().filter(|b| b.is_finite()) else {
+    let Some(b) = cauchy_bound_of(c).filter(|b| b.is_finite()) else {
         // No bound, or one that overflowed: `prepare` narrows with `root_bound` (the
         // all-roots queries do the same, so both answer on the same range).
         return (lo, hi);
@@ -187,10 +188,10 @@ fn zero_root_split(
         // The common case, without validating twice (the caller's path validates).
         return Ok(None);
     }
-    let Range::Search { lo, hi } = prepare(p, a, b, opts)? else {
+    let Range::Search { lo, hi } = prepare(p.coeffs(), a, b, opts)? else {
         return Ok(None);
     };
-    let k = zero_root_order(p, opts, slack);
+    let k = zero_root_order(p.coeffs(), opts, slack);
     Ok((k > 0).then_some((k, lo, hi)))
 }
 
@@ -285,94 +286,7 @@ impl Poly<f64> {
         slack: Slack<'_>,
         stats: &mut RootStats,
     ) -> Result<Option<f64>, RootError> {
-        stats.count_query(self.degree());
-        let result = self.smallest_root_inner(t_min, t_max, opts, slack, stats);
-        match &result {
-            Err(e) => stats.count_error(e),
-            Ok(Some(_)) => stats.with_root += 1,
-            Ok(None) => {}
-        }
-        result
-    }
-
-    fn smallest_root_inner(
-        &self,
-        t_min: f64,
-        t_max: f64,
-        opts: &RootOptions,
-        slack: Slack<'_>,
-        stats: &mut RootStats,
-    ) -> Result<Option<f64>, RootError> {
-        if slack.is_some() && !slack_applies(t_min, t_max, opts) {
-            validate(self, t_min, t_max, opts)?;
-            return Err(RootError::SlackLimited {
-                lo: t_min,
-                hi: t_max,
-            });
-        }
-        // Evaluated only for degrees 1 and 2 (every torus and Barth query passes here). With
-        // a slack the closed forms do not apply (they certify against the stored polynomial).
-        let closed_form = |opts: &RootOptions| {
-            !slack.is_some() && opts.closed_form && opts.isolation == IsolationMethod::Bernstein
-        };
-        let degree = self.degree();
-        if degree == 2 && closed_form(opts) {
-            // The quadratic closed form first, on the range as it is (it takes infinite ends
-            // as they come): when it decides, the root bound, the range narrowing and the
-            // `x^k` check of the general path below are not needed (issue 12: they were a
-            // fifth of a sphere query on the SPD sphereflakes). Undecided, the general path
-            // runs as before.
-            if !validate(self, t_min, t_max, opts)? {
-                return Ok(None);
-            }
-            if let Some(answer) = quadratic_smallest(self.coeffs(), t_min, t_max, opts.tolerance())
-            {
-                stats.closed_form += 1;
-                return Ok(answer);
-            }
-        }
-        let (lo, hi) = if degree == 1 && closed_form(opts) {
-            // The linear closed form decides the root against the range as it is, infinite
-            // ends included: a root bound would only cost divisions (the tracer queries a
-            // plane on every ray). Only the certified method has closed forms: the others
-            // need a finite range.
-            if !validate(self, t_min, t_max, opts)? {
-                return Ok(None);
-            }
-            (t_min, t_max)
-        } else {
-            let (t_min, t_max) = cauchy_narrowed(self, t_min, t_max);
-            match prepare(self, t_min, t_max, opts)? {
-                Range::Empty => return Ok(None),
-                Range::Search { lo, hi } => (lo, hi),
-            }
-        };
-        let k = zero_root_order(self, opts, slack);
-        if k > 0 {
-            // p = x^k·q exactly: the roots are 0 and those of q, and q(0) ≠ 0.
-            return with_quotient(self, k, |q| {
-                Ok(if lo < 0.0 && 0.0 <= hi {
-                    q.smallest_root_inner(lo, 0.0, opts, slack, stats)?
-                        .or(Some(0.0))
-                } else {
-                    q.smallest_root_inner(lo, hi, opts, slack, stats)?
-                })
-            });
-        }
-        match opts.isolation {
-            IsolationMethod::Bernstein => certified_smallest(self, lo, hi, opts, slack, stats),
-            IsolationMethod::Exact => Ok(exact_smallest(self, lo, hi, opts.tolerance(), stats)),
-            IsolationMethod::Sturm => sturm_smallest(self, lo, hi, opts, stats),
-            IsolationMethod::StamSturm => match StamSturm::new(self) {
-                Some(s) => match s.smallest_root(lo, hi, opts.x_tol)? {
-                    None if count_contradicted(self.coeffs(), lo, hi) => {
-                        Err(RootError::Unresolved { lo, hi })
-                    }
-                    found => Ok(found),
-                },
-                None => Ok(None),
-            },
-        }
+        try_smallest(Stored::owned(self), t_min, t_max, opts, slack, stats)
     }
 
     /// Isolating intervals of every distinct real root in `(a, b]`, sorted and disjoint, by
@@ -581,7 +495,7 @@ impl Poly<f64> {
         let before = out.len();
         let found = stats.record_all(self.degree(), |s| {
             if slack.is_some() && !slack_applies(a, b, opts) {
-                validate(self, a, b, opts)?;
+                validate(self.coeffs(), a, b, opts)?;
                 return Err(RootError::SlackLimited { lo: a, hi: b });
             }
             self.real_roots_push(a, b, opts, slack, s, out)?;
@@ -610,7 +524,7 @@ impl Poly<f64> {
             });
         }
         let refine = |p: &Poly<f64>, b, s: &mut RootStats| {
-            refine_certified(p, b, opts.tolerance(), opts.refine, s)
+            refine_certified(Stored::owned(p), b, opts.tolerance(), opts.refine, s)
         };
         let subdivide = |lo, hi, s: &mut RootStats, out: &mut Vec<f64>| {
             self.real_roots_subdivide(lo, hi, opts, slack, s, out)
@@ -649,7 +563,8 @@ impl Poly<f64> {
                     return Err(RootError::SlackLimited { lo, hi });
                 }
                 for f in &search.found {
-                    out.push(refine_found(self, &search, f, opts, slack, stats)?);
+                    let p = Stored::owned(self);
+                    out.push(refine_found(p, &search, f, opts, slack, stats)?);
                 }
             }
             Isolation::Exact(seq, ivs) => {
@@ -675,7 +590,7 @@ impl Poly<f64> {
         slack: Slack<'p>,
         stats: &mut RootStats,
     ) -> Result<Isolation<'p>, RootError> {
-        let (lo, hi) = match prepare(self, a, b, opts)? {
+        let (lo, hi) = match prepare(self.coeffs(), a, b, opts)? {
             // Nothing to search: no roots (any variant with an empty list says so).
             Range::Empty => return Ok(Isolation::Heuristic(Vec::new())),
             Range::Search { lo, hi } => (lo, hi),
@@ -755,7 +670,7 @@ fn inclusion_first<V>(
     {
         return Ok(false);
     }
-    let Range::Search { lo, hi } = prepare(p, a, b, opts)? else {
+    let Range::Search { lo, hi } = prepare(p.coeffs(), a, b, opts)? else {
         return Ok(false);
     };
     if few_roots_likely(p.coeffs(), lo, hi) {
@@ -926,10 +841,110 @@ fn slack_applies(lo: f64, hi: f64, opts: &RootOptions) -> bool {
     opts.isolation == IsolationMethod::Bernstein && lo.is_finite() && hi.is_finite()
 }
 
+/// The smallest-root query on the stored polynomial `p`, owned or borrowed: counts it in
+/// `stats` and runs [`smallest_inner`]. The one implementation behind
+/// [`Poly::try_smallest_root`] and [`RootQuery::smallest`](crate::RootQuery::smallest).
+pub(crate) fn try_smallest(
+    p: Stored<'_>,
+    t_min: f64,
+    t_max: f64,
+    opts: &RootOptions,
+    slack: Slack<'_>,
+    stats: &mut RootStats,
+) -> Result<Option<f64>, RootError> {
+    stats.count_query(p.degree());
+    let result = smallest_inner(p, t_min, t_max, opts, slack, stats);
+    match &result {
+        Err(e) => stats.count_error(e),
+        Ok(Some(_)) => stats.with_root += 1,
+        Ok(None) => {}
+    }
+    result
+}
+
+fn smallest_inner(
+    p: Stored<'_>,
+    t_min: f64,
+    t_max: f64,
+    opts: &RootOptions,
+    slack: Slack<'_>,
+    stats: &mut RootStats,
+) -> Result<Option<f64>, RootError> {
+    if slack.is_some() && !slack_applies(t_min, t_max, opts) {
+        validate(p.coeffs(), t_min, t_max, opts)?;
+        return Err(RootError::SlackLimited {
+            lo: t_min,
+            hi: t_max,
+        });
+    }
+    // Evaluated only for degrees 1 and 2 (every torus and Barth query passes here). With
+    // a slack the closed forms do not apply (they certify against the stored polynomial).
+    let closed_form = |opts: &RootOptions| {
+        !slack.is_some() && opts.closed_form && opts.isolation == IsolationMethod::Bernstein
+    };
+    let degree = p.degree();
+    if degree == 2 && closed_form(opts) {
+        // The quadratic closed form first, on the range as it is (it takes infinite ends
+        // as they come): when it decides, the root bound, the range narrowing and the
+        // `x^k` check of the general path below are not needed (issue 12: they were a
+        // fifth of a sphere query on the SPD sphereflakes). Undecided, the general path
+        // runs as before.
+        if !validate(p.coeffs(), t_min, t_max, opts)? {
+            return Ok(None);
+        }
+        if let Some(answer) = quadratic_smallest(p.coeffs(), t_min, t_max, opts.tolerance()) {
+            stats.closed_form += 1;
+            return Ok(answer);
+        }
+    }
+    let (lo, hi) = if degree == 1 && closed_form(opts) {
+        // The linear closed form decides the root against the range as it is, infinite
+        // ends included: a root bound would only cost divisions (the tracer queries a
+        // plane on every ray). Only the certified method has closed forms: the others
+        // need a finite range.
+        if !validate(p.coeffs(), t_min, t_max, opts)? {
+            return Ok(None);
+        }
+        (t_min, t_max)
+    } else {
+        let (t_min, t_max) = cauchy_narrowed(p.coeffs(), t_min, t_max);
+        match prepare(p.coeffs(), t_min, t_max, opts)? {
+            Range::Empty => return Ok(None),
+            Range::Search { lo, hi } => (lo, hi),
+        }
+    };
+    let k = zero_root_order(p.coeffs(), opts, slack);
+    if k > 0 {
+        // p = x^k·q exactly: the roots are 0 and those of q, and q(0) ≠ 0.
+        let q = p.without_lowest(k);
+        return Ok(if lo < 0.0 && 0.0 <= hi {
+            smallest_inner(q, lo, 0.0, opts, slack, stats)?.or(Some(0.0))
+        } else {
+            smallest_inner(q, lo, hi, opts, slack, stats)?
+        });
+    }
+    match opts.isolation {
+        IsolationMethod::Bernstein => certified_smallest(p, lo, hi, opts, slack, stats),
+        IsolationMethod::Exact => {
+            Ok(p.with_poly(|p| exact_smallest(p, lo, hi, opts.tolerance(), stats)))
+        }
+        IsolationMethod::Sturm => p.with_poly(|p| sturm_smallest(p, lo, hi, opts, stats)),
+        IsolationMethod::StamSturm => p.with_poly(|p| match StamSturm::new(p) {
+            Some(s) => match s.smallest_root(lo, hi, opts.x_tol)? {
+                None if count_contradicted(p.coeffs(), lo, hi) => {
+                    Err(RootError::Unresolved { lo, hi })
+                }
+                found => Ok(found),
+            },
+            None => Ok(None),
+        }),
+    }
+}
+
 /// The default certified query: closed form, then Bernstein isolation, then refinement; with
 /// a value slack, no closed form and no escalation beyond `f64` ([`RootError::SlackLimited`]).
 fn certified_smallest(
-    p: &Poly<f64>,
+    p: Stored<'_>,
     lo: f64,
     hi: f64,
     opts: &RootOptions,
@@ -955,7 +970,7 @@ fn certified_smallest(
     }
     if !(lo.is_finite() && hi.is_finite()) {
         stats.exact_fallbacks += 1;
-        return Ok(exact_smallest(p, lo, hi, opts.tolerance(), stats));
+        return Ok(p.with_poly(|p| exact_smallest(p, lo, hi, opts.tolerance(), stats)));
     }
     let signs = end_signs(c, lo, hi, slack, range_slack);
     if no_root_past_start(c, lo, hi, signs.0, slack) {
@@ -983,7 +998,7 @@ fn certified_smallest(
 /// With a value slack only `f64` brackets occur (the search stops before any exact piece),
 /// and a refinement that the slack stops is [`RootError::SlackLimited`] on its bracket.
 fn refine_found(
-    p: &Poly<f64>,
+    p: Stored<'_>,
     search: &CertifiedSearch<'_>,
     found: &Found,
     opts: &RootOptions,
@@ -1077,7 +1092,7 @@ fn refine_pointwise(
 /// Refines a certified bracket; where `f64` gets stuck, finishes in adaptive precision, and
 /// with exact signs only if even that cannot sign a point.
 fn refine_certified(
-    p: &Poly<f64>,
+    p: Stored<'_>,
     b: Bracket,
     tol: Tolerance,
     method: RefineMethod,
@@ -1087,7 +1102,7 @@ fn refine_certified(
         Refined::Root(r) => r,
         Refined::Stuck(b) => refine_wide(p.coeffs(), b, tol, stats).unwrap_or_else(|| {
             stats.refine_fallbacks += 1;
-            refine_exact_f64(p, b, tol)
+            p.with_poly(|p| refine_exact_f64(p, b, tol))
         }),
     }
 }
@@ -1263,7 +1278,13 @@ fn refine_heuristic(
     let (s_lo, s_hi) = (certified_sign(c, lo, 0.0), certified_sign(c, hi, 0.0));
     if s_lo != 0 && s_hi == -s_lo {
         let b = Bracket::new(lo, hi, s_lo);
-        Ok(refine_certified(p, b, opts.tolerance(), opts.refine, stats))
+        Ok(refine_certified(
+            Stored::owned(p),
+            b,
+            opts.tolerance(),
+            opts.refine,
+            stats,
+        ))
     } else if s_hi == 0 && s_lo != 0 && p.eval_with_error(hi).err.is_finite() {
         // Undecided because `p(hi)` is within rounding of zero — not because the bound
         // overflowed: `6.61x³ − … − f64::MAX` got the Cauchy bound 2.72e307 as a root

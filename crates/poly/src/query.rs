@@ -24,7 +24,7 @@
 use std::cell::Cell;
 use std::thread::LocalKey;
 
-use crate::closed_form::quadratic_smallest_borrowed;
+use crate::isolate::try_smallest;
 use crate::root_error::RootError;
 use crate::root_interval::RootInterval;
 use crate::root_options::RootOptions;
@@ -136,8 +136,7 @@ impl<'a> PolyRef<'a> {
     /// Infinite ends are accepted.
     pub fn roots(self, lo: f64, hi: f64, opts: &RootOptions) -> RootQuery<'a, 'static> {
         RootQuery {
-            coeffs: self.coeffs,
-            owned: None,
+            poly: Stored::borrowed(self),
             range: (lo, hi),
             opts: *opts,
             stats: None,
@@ -168,9 +167,10 @@ impl Poly<f64> {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn roots(&self, lo: f64, hi: f64, opts: &RootOptions) -> RootQuery<'_, 'static> {
-        let mut q = self.as_poly_ref().roots(lo, hi, opts);
-        q.owned = Some(self);
-        q
+        RootQuery {
+            poly: Stored::owned(self),
+            ..self.as_poly_ref().roots(lo, hi, opts)
+        }
     }
 }
 
@@ -242,15 +242,14 @@ impl std::fmt::Debug for Slack<'_> {
 /// refinement stalls).
 ///
 /// # Cost
-/// A query on a [`PolyRef`] copies the `n + 1` coefficients once into a per-thread buffer
-/// that is reused across queries (the isolation machinery works on a [`Poly`]), so it
-/// allocates nothing once the buffer has grown to size.
+/// [`smallest`](Self::smallest) runs on the borrowed coefficients themselves. The all-roots
+/// queries, and the exact and heuristic methods, copy the `n + 1` coefficients of a
+/// [`PolyRef`] once into a per-thread buffer reused across queries (that machinery works on
+/// a [`Poly`]), so they too allocate nothing once the buffer has grown to size.
 #[derive(Debug)]
 #[must_use = "a query does nothing until one of `smallest`, `all`, `all_into` or `isolate` runs it"]
 pub struct RootQuery<'p, 's> {
-    coeffs: &'p [f64],
-    /// The polynomial itself, when the query was made from a [`Poly`] (no copy needed).
-    owned: Option<&'p Poly<f64>>,
+    poly: Stored<'p>,
     range: (f64, f64),
     opts: RootOptions,
     stats: Option<&'s mut RootStats>,
@@ -279,12 +278,72 @@ pub(crate) fn with_scratch_poly<R>(
     r
 }
 
+/// The polynomial a query runs on: its coefficients (lowest first, last one not zero), and
+/// the [`Poly`] holding them when the query was made from one.
+///
+/// Why: the certified `f64` path reads only the coefficients, so a query on a caller's
+/// buffer ([`PolyRef`]) runs on the slice itself; only the rare paths that need a `Poly`
+/// (exact rationals, the Sturm heuristics) get one, from [`Stored::with_poly`]. The per-query
+/// copy into a per-thread `Poly` it replaces was ≈ 130 instructions of a torus ray's ≈ 1 100
+/// (`docs/speed.md`, "Where the teapots' slowdown came from").
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Stored<'a> {
+    coeffs: &'a [f64],
+    owned: Option<&'a Poly<f64>>,
+}
+
+impl<'a> Stored<'a> {
+    /// The coefficients of `p`.
+    pub(crate) fn owned(p: &'a Poly<f64>) -> Self {
+        Stored {
+            coeffs: p.coeffs(),
+            owned: Some(p),
+        }
+    }
+
+    /// The coefficients of a view ([`PolyRef::new`] has trimmed the trailing zeros).
+    pub(crate) fn borrowed(p: PolyRef<'a>) -> Self {
+        Stored {
+            coeffs: p.coeffs(),
+            owned: None,
+        }
+    }
+
+    /// The coefficients, lowest degree first; empty for the zero polynomial.
+    #[inline]
+    pub(crate) fn coeffs(&self) -> &'a [f64] {
+        self.coeffs
+    }
+
+    /// The degree, as [`Poly::degree`].
+    #[inline]
+    pub(crate) fn degree(&self) -> usize {
+        self.coeffs.len().saturating_sub(1)
+    }
+
+    /// `p / x^k` when the `k` lowest coefficients are zero: the rest of the slice, no copy.
+    pub(crate) fn without_lowest(&self, k: usize) -> Stored<'a> {
+        Stored {
+            coeffs: &self.coeffs[k..],
+            owned: None,
+        }
+    }
+
+    /// Runs `f` on the polynomial as a [`Poly`]: the caller's own, or a copy in the per-thread
+    /// buffer (see [`with_scratch_poly`]).
+    pub(crate) fn with_poly<R>(&self, f: impl FnOnce(&Poly<f64>) -> R) -> R {
+        match self.owned {
+            Some(p) => f(p),
+            None => with_scratch_poly(&BORROWED, self.coeffs, f),
+        }
+    }
+}
+
 impl<'p, 's> RootQuery<'p, 's> {
     /// Fills in `stats` (counters are added to, never reset).
     pub fn stats<'t>(self, stats: &'t mut RootStats) -> RootQuery<'p, 't> {
         RootQuery {
-            coeffs: self.coeffs,
-            owned: self.owned,
+            poly: self.poly,
             range: self.range,
             opts: self.opts,
             stats: Some(stats),
@@ -324,11 +383,11 @@ impl<'p, 's> RootQuery<'p, 's> {
         }
     }
 
-    /// Runs `f` on the polynomial, the range, the options and the statistics (the caller's,
-    /// or a throw-away set).
+    /// Runs `f` on the polynomial, the range, the options, the slack and the statistics (the
+    /// caller's, or a throw-away set).
     fn run<R>(
         self,
-        f: impl FnOnce(&Poly<f64>, (f64, f64), &RootOptions, Slack<'_>, &mut RootStats) -> R,
+        f: impl FnOnce(Stored<'p>, (f64, f64), &RootOptions, Slack<'p>, &mut RootStats) -> R,
     ) -> R {
         // Zeroed only when the caller keeps no statistics: `RootStats` is ~300 bytes, and
         // clearing it on every query was a measurable share of a torus ray (a memset per
@@ -341,12 +400,7 @@ impl<'p, 's> RootQuery<'p, 's> {
                 &mut local
             }
         };
-        match self.owned {
-            Some(p) => f(p, self.range, &self.opts, self.slack, stats),
-            None => with_scratch_poly(&BORROWED, self.coeffs, |p| {
-                f(p, self.range, &self.opts, self.slack, stats)
-            }),
-        }
+        f(self.poly, self.range, &self.opts, self.slack, stats)
     }
 
     /// The smallest distinct real root in `(lo, hi]`, as
@@ -355,22 +409,9 @@ impl<'p, 's> RootQuery<'p, 's> {
     ///
     /// # Errors
     /// As [`Poly::try_smallest_root`].
-    pub fn smallest(mut self) -> Result<Option<f64>, RootError> {
-        // A quadratic on borrowed coefficients is answered in closed form on the slice when
-        // it can be, without the per-thread copy (`quadratic_smallest_borrowed`).
-        if self.owned.is_none()
-            && !self.slack.is_some()
-            && let Some(found) = quadratic_smallest_borrowed(
-                self.coeffs,
-                self.range.0,
-                self.range.1,
-                &self.opts,
-                self.stats.as_deref_mut(),
-            )
-        {
-            return Ok(found);
-        }
-        self.run(|p, (lo, hi), o, sl, s| p.try_smallest_root_slack(lo, hi, o, sl, s))
+    pub fn smallest(self) -> Result<Option<f64>, RootError> {
+        // On the coefficients as they are, borrowed or owned: no copy (see [`Stored`]).
+        self.run(|p, (lo, hi), o, sl, s| try_smallest(p, lo, hi, o, sl, s))
     }
 
     /// Every distinct real root in `(lo, hi]`, sorted, as [`Poly::real_roots_with`].
@@ -389,7 +430,9 @@ impl<'p, 's> RootQuery<'p, 's> {
     /// # Errors
     /// As [`Poly::real_roots_into`].
     pub fn all_into(self, out: &mut Vec<f64>) -> Result<(), RootError> {
-        self.run(|p, (lo, hi), o, sl, s| p.real_roots_into_slack(lo, hi, o, sl, s, out))
+        self.run(|p, (lo, hi), o, sl, s| {
+            p.with_poly(|p| p.real_roots_into_slack(lo, hi, o, sl, s, out))
+        })
     }
 
     /// Isolating intervals of every distinct real root in `(lo, hi]`, as
@@ -404,7 +447,7 @@ impl<'p, 's> RootQuery<'p, 's> {
                 s.slack_limited += 1;
                 return Err(RootError::SlackLimited { lo, hi });
             }
-            p.isolate_roots_with(lo, hi, o, s)
+            p.with_poly(|p| p.isolate_roots_with(lo, hi, o, s))
         })
     }
 }
@@ -490,8 +533,9 @@ mod tests {
         );
     }
 
-    /// A quadratic on borrowed coefficients, answered on the slice without the per-thread
-    /// copy (issue 12, ninth pass), gives the owned query's answer, error and statistics on
+    /// A quadratic on borrowed coefficients, answered on the slice itself (issue 12, ninth
+    /// pass; since the tenth, every smallest-root query of a [`PolyRef`] runs on its slice:
+    /// [`Stored`]), gives the owned query's answer, error and statistics on
     /// random quadratics and ranges (roots inside, outside, at the ends, double roots the
     /// closed form leaves to the general path, no real roots), empty and infinite ranges, NaN
     /// ends, invalid tolerances, other methods and the closed form switched off.

@@ -22,11 +22,11 @@ use smallvec::SmallVec;
 use crate::bernstein::Bracket;
 use crate::double_double::{DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, taylor_shift_into, two_sum};
 use crate::multiprec::{Tier, point_sign, refine_wide};
+use crate::query::Stored;
 use crate::refine::{Refined, refine_bracket, refine_exact_offset};
 use crate::root_interval::RootInterval;
 use crate::root_options::{RefineMethod, Tolerance};
 use crate::stats::RootStats;
-use crate::univariate::Poly;
 
 /// Highest degree shifted: the double-double shift costs `n²/2` products, and above this
 /// the per-node tiers of `multiprec.rs` are no dearer (the same bound as `dd_bernstein.rs`).
@@ -150,7 +150,7 @@ impl Shift {
     /// [`RootStats::refine_fallbacks`]).
     pub(crate) fn refine(
         &self,
-        p: &Poly<f64>,
+        p: Stored<'_>,
         b: &Bracket,
         tol: Tolerance,
         method: RefineMethod,
@@ -188,7 +188,7 @@ impl Shift {
             return r;
         }
         stats.refine_fallbacks += 1;
-        refine_exact_offset(p, self.at, stuck, tol)
+        p.with_poly(|p| refine_exact_offset(p, self.at, stuck, tol))
     }
 }
 
@@ -242,6 +242,7 @@ mod tests {
     use crate::root_options::RootOptions;
     use crate::scalar::{rat_from_f64, rat_to_f64};
     use crate::testutil::{planted_f64, stored_roots};
+    use crate::univariate::Poly;
 
     /// The exact coefficients of `p(e + u)` for the stored `c`.
     fn exact_shift(c: &[f64], e: f64) -> Vec<crate::scalar::Rat> {

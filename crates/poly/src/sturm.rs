@@ -195,7 +195,7 @@ impl Poly<f64> {
     /// # Errors
     /// [`RootError::NonFiniteCoefficient`] and [`RootError::ZeroPolynomial`].
     pub fn sturm(&self) -> Result<SturmSequence<f64>, RootError> {
-        check_finite(self)?;
+        check_finite(self.coeffs())?;
         if self.is_zero() {
             return Err(RootError::ZeroPolynomial);
         }
@@ -356,8 +356,8 @@ fn neg_rem_f64(a: &Poly<f64>, d: &Poly<f64>) -> Poly<f64> {
     Poly::new(r.into_iter().map(|x| -x).collect())
 }
 
-pub(crate) fn check_finite(p: &Poly<f64>) -> Result<(), RootError> {
-    match p.coeffs().iter().position(|c| !c.is_finite()) {
+pub(crate) fn check_finite(c: &[f64]) -> Result<(), RootError> {
+    match c.iter().position(|c| !c.is_finite()) {
         Some(index) => Err(RootError::NonFiniteCoefficient { index }),
         None => Ok(()),
     }

@@ -313,16 +313,20 @@ impl<T: Scalar> Poly<T> {
     /// Exact over [`Rat`]. Over `f64` the division rounds; use
     /// [`Poly::<f64>::root_bound`] for a bound rounded outwards.
     pub fn cauchy_bound(&self) -> Option<T> {
-        if self.degree() == 0 {
-            return None;
-        }
-        let lc = self.leading_coeff()?.abs();
-        let m = self.coeffs[..self.degree()].iter().fold(T::zero(), |m, c| {
-            let q = c.abs() / &lc;
-            if q > m { q } else { m }
-        });
-        Some(T::one() + m)
+        cauchy_bound_of(&self.coeffs)
     }
+}
+
+/// [`Poly::cauchy_bound`] of the coefficients `c` (lowest first, no trailing zero), the one
+/// implementation behind it and the borrowed smallest-root query's.
+pub(crate) fn cauchy_bound_of<T: Scalar>(c: &[T]) -> Option<T> {
+    let n = c.len().checked_sub(1).filter(|&n| n > 0)?;
+    let lc = c[n].abs();
+    let m = c[..n].iter().fold(T::zero(), |m, x| {
+        let q = x.abs() / &lc;
+        if q > m { q } else { m }
+    });
+    Some(T::one() + m)
 }
 
 /// Horner's rule on coefficients stored lowest power first: the one plain evaluation of the
