@@ -105,7 +105,7 @@ fn build_surfaces(
     methods: &Methods,
     parallel: bool,
 ) -> Result<Built, SceneInvalid> {
-    let build = |(index, object): (usize, &Object)| {
+    let build = |(index, object): (usize, &Object)| -> Result<_, SceneInvalid> {
         let bad = |error| SceneInvalid::Object { index, error };
         // The builder checked the same placement where the keys have places.
         let placement = object.placement().map_err(bad)?;
@@ -115,7 +115,7 @@ fn build_surfaces(
         let bounds = surface.bounds();
         Ok((surface, bounds))
     };
-    let built: Vec<Result<(Box<dyn Surface>, Option<Bounds3>), SceneInvalid>> = if parallel {
+    let built: Vec<_> = if parallel {
         scene.objects.par_iter().enumerate().map(build).collect()
     } else {
         scene.objects.iter().enumerate().map(build).collect()
