@@ -163,13 +163,6 @@ impl RawArgs {
 }
 
 fn run(args: &RawArgs, cancel: &Cancel) -> anyhow::Result<()> {
-    if let Some(t) = args.threads {
-        // A large NFF file is read on rayon's global pool: `--threads` bounds that phase too.
-        // Should the pool not start, the render's own pool reports the failure below.
-        let _ = rayon::ThreadPoolBuilder::new()
-            .num_threads(t as usize)
-            .build_global();
-    }
     let parse_start = Instant::now();
     let scene = render::scene::load(&args.scene)?;
     let parse = parse_start.elapsed();

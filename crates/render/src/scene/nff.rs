@@ -14,7 +14,6 @@ use std::path::Path;
 use std::sync::Arc;
 
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::error::{ErrorKind, SceneError, Span};
 use super::lexer::{TextLines, end_position, text_lines};
@@ -105,178 +104,9 @@ pub fn nff_material(color: Rgb, kd: f64, ks: f64, shine: f64, t: f64, ior: f64) 
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn parse_nff(text: &str, file: &Path) -> Result<ValidScene, SceneError> {
-    let chunks = if text.len() >= PARALLEL_PARSE_MIN_BYTES {
-        rayon::current_num_threads()
-    } else {
-        1
-    };
-    parse_in_chunks(text, file, chunks)
-}
-
-/// [`parse_nff`] reading `text` in `chunks` stretches on the rayon pool (one: serially).
-fn parse_in_chunks(text: &str, file: &Path, chunks: usize) -> Result<ValidScene, SceneError> {
-    let file: Arc<Path> = Arc::from(file);
-    let part = if chunks > 1 {
-        // Any error in a stretch: the serial reading below reports it as it always did.
-        read_in_chunks(text, &file, chunks)
-    } else {
-        None
-    };
-    let part = match part {
-        Some(part) => part,
-        None => read_part(text, 0, &file)?,
-    };
-    part.finish(text, file)
-}
-
-/// Texts at least this long (256 KiB, ≈ 6 500 spheres) are read in chunks on the rayon pool
-/// ([`read_in_chunks`]): the 66 430-sphere `balls-s5.nff` (2.7 MB) took 43–63 ms on one
-/// thread (`docs/speed.md`, SPD "Tenth pass"), while a small file's chunks would cost more in
-/// fork-join and merging than they save.
-const PARALLEL_PARSE_MIN_BYTES: usize = 1 << 18;
-
-/// The entity keywords: a line whose first word is one of these starts an entity wherever the
-/// whole file reads without error (inside an entity, every line is a `v` sub-line named
-/// `from` … `resolution` or a line of numbers, so such a line there is an error).
-const ENTITY_KEYWORDS: [&str; 8] = ["v", "b", "l", "f", "c", "s", "p", "pp"];
-
-/// What one stretch of lines holds, read on its own from the specification's starting state.
-/// Stretches read in order and [`Part::append`]ed give what one reading of their
-/// concatenation gives.
-struct Part {
-    /// The objects and lights in file order; the camera, viewport size and background only
-    /// where `view` / `background` say the stretch set them.
-    scene: Scene,
-    spans: SceneSpans,
-    /// Lights without a colour (indices into `scene.lights`).
-    uncoloured: Vec<usize>,
-    /// Objects read before the stretch's first `f`: they take the material current where the
-    /// stretch starts (the default one at the start of the file).
-    inherited: usize,
-    /// The material of the stretch's last `f`, if it has one.
-    material: Option<Material>,
-    view: bool,
-    background: bool,
-}
-
-impl Part {
-    /// Adds the stretch read just after this one.
-    fn append(&mut self, mut next: Part) {
-        if let Some(m) = &self.material {
-            for o in &mut next.scene.objects[..next.inherited] {
-                o.material = m.clone();
-            }
-        }
-        let offset = self.scene.lights.len();
-        self.uncoloured
-            .extend(next.uncoloured.iter().map(|i| i + offset));
-        self.scene.lights.append(&mut next.scene.lights);
-        self.scene.objects.append(&mut next.scene.objects);
-        self.spans.lights.append(&mut next.spans.lights);
-        self.spans.objects.append(&mut next.spans.objects);
-        if next.view {
-            self.view = true;
-            self.scene.camera = next.scene.camera;
-            self.scene.viewport.size = next.scene.viewport.size;
-            self.spans.camera = next.spans.camera;
-            self.spans.viewport = next.spans.viewport;
-        }
-        if next.background {
-            self.background = true;
-            self.scene.world.background = next.scene.world.background;
-            self.spans.world = next.spans.world;
-        }
-        if next.material.is_some() {
-            self.material = next.material;
-        }
-    }
-
-    /// The scene of the whole `text`, once every stretch is in.
-    fn finish(mut self, text: &str, file: Arc<Path>) -> Result<ValidScene, SceneError> {
-        // Lights without a colour share a unit total intensity, 1/√n each (as the SPD's
-        // POV-Ray writer does).
-        let share = 1.0 / (self.uncoloured.len().max(1) as f64).sqrt();
-        for &i in &self.uncoloured {
-            self.scene.lights[i].color = Rgb::splat(share);
-        }
-        self.spans.validate(self.scene, &end_position(text, file))
-    }
-}
-
-/// Reads `text` as `chunks` stretches in parallel, each starting at a line whose first word is
-/// an entity keyword ([`ENTITY_KEYWORDS`]), and joins them in order; `None` when a stretch
-/// has an error (the caller reads the whole text again to report it as one reading does).
-///
-/// When every stretch reads without error, so does the whole text, and to the same scene: a
-/// stretch that reads alone ends on a complete entity (a missing line is an end-of-file
-/// error), so one reading of the text is at an entity's start where the next stretch starts,
-/// and reads its lines as the stretch did (test `parallel_parse_is_the_serial_parse`).
-fn read_in_chunks(text: &str, file: &Arc<Path>, chunks: usize) -> Option<Part> {
-    let mut starts = vec![0];
-    for k in 1..chunks {
-        let from = (text.len() / chunks * k).max(starts[starts.len() - 1]);
-        match entity_line_after(text, from) {
-            Some(at) if at > starts[starts.len() - 1] => starts.push(at),
-            _ => {}
-        }
-    }
-    starts.push(text.len());
-    // The 0-based number of each stretch's first line.
-    let mut first_lines = vec![0u32];
-    for w in starts.windows(2).take(starts.len() - 2) {
-        let ends = end_position(&text[w[0]..w[1]], file.clone()).line - 1;
-        first_lines.push(first_lines[first_lines.len() - 1] + ends);
-    }
-    let parts: Vec<Result<Part, SceneError>> = starts
-        .windows(2)
-        .zip(first_lines)
-        .collect::<Vec<_>>()
-        .into_par_iter()
-        .map(|(w, first)| read_part(&text[w[0]..w[1]], first, file))
-        .collect();
-    let mut parts = parts.into_iter();
-    let mut whole = parts.next()?.ok()?;
-    for part in parts {
-        whole.append(part.ok()?);
-    }
-    Some(whole)
-}
-
-/// The byte offset of the first line that starts after byte `from` of `text` and whose first
-/// word is an entity keyword, if any.
-fn entity_line_after(text: &str, from: usize) -> Option<usize> {
-    let bytes = text.as_bytes();
-    let mut i = from;
-    loop {
-        let end = i + bytes
-            .get(i..)?
-            .iter()
-            .position(|&b| b == b'\n' || b == b'\r')?;
-        // Past `\n`, `\r\n` or a lone `\r` (the line ends of `text_lines`).
-        let next = if bytes[end] == b'\r' && bytes.get(end + 1) == Some(&b'\n') {
-            end + 2
-        } else {
-            end + 1
-        };
-        let line = text_lines(&text[next..]).next()?;
-        let body = line.split('#').next().unwrap_or("");
-        if body
-            .split_ascii_whitespace()
-            .next()
-            .is_some_and(|w| ENTITY_KEYWORDS.contains(&w))
-        {
-            return Some(next);
-        }
-        i = next;
-    }
-}
-
-/// Reads the stretch `text`, whose first line is line `first_line + 1` of the file.
-fn read_part(text: &str, first_line: u32, file: &Arc<Path>) -> Result<Part, SceneError> {
     let mut r = Reader {
         lines: text_lines(text).enumerate(),
-        first_line,
-        file: file.clone(),
+        file: Arc::from(file),
     };
     let mut scene = Scene::default();
     scene.world.background = Rgb::ZERO;
@@ -285,10 +115,8 @@ fn read_part(text: &str, first_line: u32, file: &Arc<Path>) -> Result<Part, Scen
         resolution: [1, 1],
     };
     let mut material = Material::default();
-    let mut material_set = false;
-    let mut inherited = 0;
-    let (mut view, mut background) = (false, false);
-    // Lights without a colour share a unit total intensity, set once all are read.
+    // Lights without a colour share a unit total intensity, 1/√n each (as the SPD's POV-Ray
+    // writer does), set once all are read.
     let mut uncoloured = Vec::new();
     let mut spans = SceneSpans::default();
     while let Some(mut line) = r.next_line() {
@@ -299,13 +127,11 @@ fn read_part(text: &str, first_line: u32, file: &Arc<Path>) -> Result<Part, Scen
             "v" => {
                 line.finish()?;
                 read_view(&mut r, &line, &mut scene)?;
-                view = true;
                 spans.camera = Some(r.span(&line, at));
                 spans.viewport = spans.camera.clone();
             }
             "b" => {
                 scene.world.background = line.vector("the background colour")?;
-                background = true;
                 spans.world = Some(r.span(&line, at));
                 line.finish()?;
             }
@@ -347,7 +173,6 @@ fn read_part(text: &str, first_line: u32, file: &Arc<Path>) -> Result<Part, Scen
                     ior = 1.0;
                 }
                 material = nff_material(color, kd, ks, shine, t, ior);
-                material_set = true;
             }
             "s" => {
                 let center = line.vector("the sphere's centre")?;
@@ -357,7 +182,6 @@ fn read_part(text: &str, first_line: u32, file: &Arc<Path>) -> Result<Part, Scen
                 line.finish()?;
                 let shape = ShapeKind::Sphere { center, radius };
                 push(&mut scene, &mut spans, shape, &material, r.span(&line, at))?;
-                inherited += usize::from(!material_set);
             }
             "c" => {
                 line.finish()?;
@@ -377,7 +201,6 @@ fn read_part(text: &str, first_line: u32, file: &Arc<Path>) -> Result<Part, Scen
                     caps: false,
                 };
                 push(&mut scene, &mut spans, shape, &material, r.span(&line, at))?;
-                inherited += usize::from(!material_set);
             }
             "p" | "pp" => {
                 let smooth = keyword == "pp";
@@ -403,7 +226,6 @@ fn read_part(text: &str, first_line: u32, file: &Arc<Path>) -> Result<Part, Scen
                     (false, _) => ShapeKind::Polygon { vertices },
                 };
                 push(&mut scene, &mut spans, shape, &material, r.span(&line, at))?;
-                inherited += usize::from(!material_set);
             }
             other => {
                 return Err(SceneError::at(
@@ -416,15 +238,11 @@ fn read_part(text: &str, first_line: u32, file: &Arc<Path>) -> Result<Part, Scen
             }
         }
     }
-    Ok(Part {
-        scene,
-        spans,
-        uncoloured,
-        inherited,
-        material: material_set.then_some(material),
-        view,
-        background,
-    })
+    let share = 1.0 / (uncoloured.len().max(1) as f64).sqrt();
+    for i in uncoloured {
+        scene.lights[i].color = Rgb::splat(share);
+    }
+    spans.validate(scene, &end_position(text, Arc::from(file)))
 }
 
 /// Adds an object after checking its shape and its placement (the cone's frame), reporting a
@@ -526,8 +344,6 @@ fn view_line<'a>(
 /// The lines of the text, numbered from 1, with comments and blank lines skipped.
 struct Reader<'a> {
     lines: std::iter::Enumerate<TextLines<'a>>,
-    /// Lines of the file before the first of `lines`.
-    first_line: u32,
     file: Arc<Path>,
 }
 
@@ -552,7 +368,7 @@ impl<'a> Reader<'a> {
             }
             return Some(Line {
                 raw,
-                no: self.first_line + i as u32 + 1,
+                no: i as u32 + 1,
                 words: body.split_ascii_whitespace(),
                 file: self.file.clone(),
             });
@@ -673,122 +489,6 @@ impl<'a> Line<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// A random NFF file of `entities` entities: every kind, lights with and without a
-    /// colour, materials changing anywhere (so stretches start with objects that inherit the
-    /// material before them), comments, blank lines and the three kinds of line end mixed.
-    fn random_nff(rng: &mut impl rand::Rng, entities: usize) -> String {
-        let mut lines: Vec<String> = Vec::new();
-        fn num(rng: &mut impl rand::Rng) -> String {
-            format!("{:.4}", rng.gen_range(-9.0..9.0))
-        }
-        for _ in 0..entities {
-            let (x, y, z) = (num(rng), num(rng), num(rng));
-            match rng.gen_range(0..20) {
-                0 => {
-                    lines.push("v".into());
-                    lines.push(format!("from {x} {y} {z}"));
-                    lines.push("at 0 0 0".into());
-                    lines.push("up 0 0 1".into());
-                    lines.push(format!("angle {}", rng.gen_range(10..80)));
-                    lines.push("hither 1".into());
-                    lines.push(format!(
-                        "resolution {} {}",
-                        rng.gen_range(1..600),
-                        rng.gen_range(1..600)
-                    ));
-                }
-                1 => lines.push(format!("b 0.{} 0.2 0.3", rng.gen_range(0..9))),
-                2 => lines.push(format!("l {x} {y} {z}")),
-                3 => lines.push(format!("l {x} {y} {z} 0.5 0.6 0.{}", rng.gen_range(0..9))),
-                4 | 5 => lines.push(format!(
-                    "f 0.{} 0.5 0.5 0.{} 0.{} {} 0 1.5",
-                    rng.gen_range(0..9),
-                    rng.gen_range(0..5),
-                    rng.gen_range(0..4),
-                    rng.gen_range(1..60)
-                )),
-                6 => lines.push(format!("# a comment {x}")),
-                7 => lines.push(String::new()),
-                8 | 9 => {
-                    let n = rng.gen_range(3..7);
-                    let smooth = rng.gen_bool(0.4);
-                    lines.push(format!("{} {n}", if smooth { "pp" } else { "p" }));
-                    for k in 0..n {
-                        let a = k as f64 * std::f64::consts::TAU / n as f64;
-                        let normal = if smooth { " 0 0 1" } else { "" };
-                        lines.push(format!("{x} {:.4} {:.4}{normal}", a.cos(), a.sin()));
-                    }
-                }
-                10 => {
-                    lines.push("c".into());
-                    lines.push(format!("{x} {y} {z} 0.5"));
-                    lines.push(format!("{x} {y} {:.4} 0.25", rng.gen_range(10.0..12.0)));
-                }
-                _ => lines.push(format!("s {x} {y} {z} 0.{}5 # sphere", rng.gen_range(0..9))),
-            }
-        }
-        let mut text = String::new();
-        for line in lines {
-            text.push_str(&line);
-            text.push_str(["\n", "\n", "\r\n", "\r"][rng.gen_range(0..4)]);
-        }
-        text
-    }
-
-    /// Issue 12 (tenth pass): a file read in parallel stretches gives the serial reading's
-    /// scene, and a malformed one its error (file:line:col), whatever the number of stretches:
-    /// random files of every entity kind, and the same files broken at a random line (a word
-    /// replaced, a line dropped, or a sphere where a vertex or `v` sub-line belongs).
-    #[test]
-    fn parallel_parse_is_the_serial_parse() {
-        use rand::{Rng, SeedableRng};
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(1210);
-        let file = Path::new("flake.nff");
-        // The scene, or the error as written and as built (file:line:col, kind).
-        let parse = |text: &str, chunks| {
-            parse_in_chunks(text, file, chunks).map_err(|e| format!("{e} / {e:?}"))
-        };
-        let (mut split, mut broken) = (0, 0);
-        for round in 0..150 {
-            let entities = rng.gen_range(1..120);
-            let text = random_nff(&mut rng, entities);
-            let serial = parse(&text, 1);
-            assert!(serial.is_ok(), "round {round}: {serial:?}");
-            for chunks in 2..=6 {
-                let arc: Arc<Path> = Arc::from(file);
-                let part = read_in_chunks(&text, &arc, chunks);
-                assert!(
-                    part.is_some(),
-                    "round {round}: a valid file reads in stretches"
-                );
-                assert_eq!(parse(&text, chunks), serial, "round {round}");
-                split += 1;
-            }
-            // Break it at a random line.
-            let mut lines: Vec<&str> = text_lines(&text).collect();
-            let at = rng.gen_range(0..lines.len());
-            let replaced;
-            match rng.gen_range(0..3) {
-                0 => {
-                    replaced = lines[at].replacen('0', "zz", 1);
-                    lines[at] = &replaced;
-                }
-                1 => {
-                    lines.remove(at);
-                }
-                _ => lines[at] = "s 1 2 3 0.5",
-            }
-            let bad = lines.join("\n");
-            let serial = parse(&bad, 1);
-            broken += usize::from(serial.is_err());
-            for chunks in 2..=6 {
-                assert_eq!(parse(&bad, chunks), serial, "round {round}");
-            }
-        }
-        assert!(split >= 700, "{split} parallel readings");
-        assert!(broken >= 40, "only {broken} broken files");
-    }
 
     /// Every decimal gets the bits `str::parse::<f64>` gives it, and what it refuses is
     /// refused: random decimals of 1–20 digits with the point anywhere (or none), either
