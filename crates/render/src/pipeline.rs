@@ -111,6 +111,8 @@ pub fn render_scene_with_cancel(
     let inputs: Vec<&Path> = scene_path.into_iter().collect();
     let mut outputs = PendingOutputs::prepare(&targets, &inputs)?;
     let setup_start = Instant::now();
+    let (prepared, settings) = prepare_render(scene, opts)?;
+    let size = settings.size;
     let mut builder = rayon::ThreadPoolBuilder::new();
     if let Some(t) = opts.threads {
         builder = builder.num_threads(t);
@@ -120,10 +122,6 @@ pub fn render_scene_with_cancel(
         threads: requested,
         source,
     })?;
-    // The set-up (surfaces, hierarchy) runs on the render's workers too: `--threads N` bounds
-    // every phase, and a large scene's surfaces and BVH are built on all of them.
-    let (prepared, settings) = pool.install(|| prepare_render(scene, opts))?;
-    let size = settings.size;
     let setup = setup_start.elapsed();
 
     let trace_start = Instant::now();

@@ -1,8 +1,6 @@
 //! [`PreparedScene`]: the scene turned into traceable primitives (surfaces built, transforms
 //! composed, polynomials precomputed) — what the integrator reads.
 
-use rayon::prelude::*;
-
 use crate::aggregate::{Aggregate, PRUNE_SLACK_REL};
 use crate::geometry::{Bounds3, Transform};
 use crate::methods::{PatchMethod, RootMethods};
@@ -14,12 +12,6 @@ use crate::surface::{
     AaBox, Algebraic, BezierMesh, Implicit, ImplicitFn, Plane, Polygon, Sphere, Superquadric,
     Surface, Torus, Transformed,
 };
-
-/// Scenes with at least this many objects build their surfaces in parallel: the 66 430-sphere
-/// sphereflake spends ≈ 100 ms of one thread there (`docs/speed.md`, SPD "Tenth pass"), while
-/// below a thousand objects the set-up is a few milliseconds and rayon's fork-join and the
-/// extra vector cost more than they save.
-const PARALLEL_SETUP_MIN_OBJECTS: usize = 1024;
 
 /// Everything the integrator needs, built once per render.
 #[derive(Debug)]
@@ -77,9 +69,19 @@ impl PreparedScene {
             roots,
             patch_method,
         };
-        let parallel = scene.objects.len() >= PARALLEL_SETUP_MIN_OBJECTS;
-        let Built { surfaces, boxes } = build_surfaces(scene, &methods, parallel)?;
-        let materials = scene.objects.iter().map(|o| o.material.clone()).collect();
+        let mut surfaces = Vec::with_capacity(scene.objects.len());
+        let mut materials = Vec::with_capacity(scene.objects.len());
+        for (index, object) in scene.objects.iter().enumerate() {
+            let bad = |error| SceneInvalid::Object { index, error };
+            // The builder checked the same placement where the keys have places.
+            let placement = object.placement().map_err(bad)?;
+            let surface = build_surface(object, &placement, &methods).ok_or(bad(
+                crate::scene::InvalidModel::new("Type", "has degenerate geometry"),
+            ))?;
+            surfaces.push(surface);
+            materials.push(object.material.clone());
+        }
+        let boxes: Vec<Option<Bounds3>> = surfaces.iter().map(|s| s.bounds()).collect();
         Ok(PreparedScene {
             aggregate: Aggregate::new(&boxes),
             surfaces,
@@ -89,45 +91,6 @@ impl PreparedScene {
             textures: scene.textures.clone(),
         })
     }
-}
-
-/// The objects' surfaces and their boxes ([`Surface::bounds`]), in object order.
-struct Built {
-    surfaces: Vec<Box<dyn Surface>>,
-    boxes: Vec<Option<Bounds3>>,
-}
-
-/// The surfaces of `scene`'s objects, built on the current rayon pool when `parallel` (the
-/// render's, see `pipeline::render_scene`); the error of the first object that cannot be
-/// built, as by a loop over them.
-fn build_surfaces(
-    scene: &ValidScene,
-    methods: &Methods,
-    parallel: bool,
-) -> Result<Built, SceneInvalid> {
-    let build = |(index, object): (usize, &Object)| -> Result<_, SceneInvalid> {
-        let bad = |error| SceneInvalid::Object { index, error };
-        // The builder checked the same placement where the keys have places.
-        let placement = object.placement().map_err(bad)?;
-        let surface = build_surface(object, &placement, methods).ok_or(bad(
-            crate::scene::InvalidModel::new("Type", "has degenerate geometry"),
-        ))?;
-        let bounds = surface.bounds();
-        Ok((surface, bounds))
-    };
-    let built: Vec<_> = if parallel {
-        scene.objects.par_iter().enumerate().map(build).collect()
-    } else {
-        scene.objects.iter().enumerate().map(build).collect()
-    };
-    let mut surfaces = Vec::with_capacity(scene.objects.len());
-    let mut boxes = Vec::with_capacity(scene.objects.len());
-    for result in built {
-        let (surface, bounds) = result?;
-        surfaces.push(surface);
-        boxes.push(bounds);
-    }
-    Ok(Built { surfaces, boxes })
 }
 
 /// The solver choices of one render, as [`PreparedScene::with_methods`] received them.
@@ -246,86 +209,6 @@ mod tests {
     use crate::geometry::Ray;
     use crate::scene::{ControlNet, Object, Scene};
     use crate::workspace::Workspace;
-
-    /// Issue 12 (tenth pass): the surfaces built in parallel are the serial loop's, in the
-    /// same order, and so is the hierarchy over them: 3 000 random spheres, tori, boxes and
-    /// triangles, built on a three-thread pool and on none.
-    #[test]
-    fn parallel_setup_is_the_serial_setup() {
-        use rand::{Rng, SeedableRng};
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(1210);
-        let mut scene = Scene::default();
-        let point = |rng: &mut rand_chacha::ChaCha8Rng| {
-            DVec3::new(
-                rng.gen_range(-50.0..50.0),
-                rng.gen_range(-50.0..50.0),
-                rng.gen_range(-50.0..50.0),
-            )
-        };
-        for _ in 0..3000 {
-            let c = point(&mut rng);
-            let shape = match rng.gen_range(0..4) {
-                0 => ShapeKind::Sphere {
-                    center: c,
-                    radius: rng.gen_range(0.1..2.0),
-                },
-                1 => ShapeKind::Box {
-                    min: c,
-                    max: c + DVec3::splat(rng.gen_range(0.1..2.0)),
-                },
-                2 => ShapeKind::Triangle {
-                    vertices: [c, c + DVec3::X, c + DVec3::Y],
-                },
-                _ => ShapeKind::Torus {
-                    major: 1.0,
-                    minor: rng.gen_range(0.1..0.5),
-                    center: c,
-                    axis: DVec3::Z,
-                },
-            };
-            scene.objects.push(Object::new(shape));
-        }
-        let scene = ValidScene::new(scene).unwrap();
-        let methods = Methods {
-            roots: RootMethods::default(),
-            patch_method: None,
-        };
-        let serial = build_surfaces(&scene, &methods, false).unwrap();
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(3)
-            .build()
-            .unwrap();
-        let parallel = pool
-            .install(|| build_surfaces(&scene, &methods, true))
-            .unwrap();
-        assert_eq!(
-            parallel.boxes, serial.boxes,
-            "the same boxes in the same order"
-        );
-        assert_eq!(
-            format!("{:?}", parallel.surfaces),
-            format!("{:?}", serial.surfaces),
-            "the same surfaces"
-        );
-        let prepared = pool.install(|| PreparedScene::new(&scene)).unwrap();
-        assert_eq!(
-            format!("{:?}", prepared.surfaces),
-            format!("{:?}", serial.surfaces),
-            "PreparedScene::new takes the parallel path"
-        );
-        let (a, b) = (prepared.aggregate, Aggregate::new(&serial.boxes));
-        assert_eq!(a.unbounded(), b.unbounded(), "the same unbounded items");
-        let ray = Ray::new(DVec3::new(-60.0, 0.3, 0.2), DVec3::new(1.0, 0.01, 0.02));
-        let mut order = [Vec::new(), Vec::new()];
-        for (agg, seen) in [&a, &b].into_iter().zip(&mut order) {
-            agg.nearest(&ray, 0.0..f64::INFINITY, &mut 0, |i| {
-                seen.push(i);
-                None::<(f64, ())>
-            });
-        }
-        assert!(!order[0].is_empty(), "the ray crosses some boxes");
-        assert_eq!(order[0], order[1], "the same hierarchy");
-    }
 
     /// `render --isolation` reaches cones and cylinders: they were built with the default
     /// root methods whatever the render asked for (found merging the scene BVH branch), so the
