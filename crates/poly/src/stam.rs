@@ -16,9 +16,9 @@
 //! a bisection that never saw `P` change sign) the query reports
 //! [`RootError::Unresolved`] instead.
 
-use crate::eval_bound::{certified_sign, horner_bounded_from_top};
+use crate::eval_bound::horner_bounded_from_top;
 use crate::root_error::RootError;
-use crate::sturm::{CHECKED_STACK, changes_with_uncertain, exact_zero_at};
+use crate::sturm::{CHECKED_STACK, changes_with_uncertain, v0_sign_at_zero_value};
 use crate::univariate::Poly;
 
 /// Most bisections in [`StamSturm::smallest_root`]'s isolation loop (the original has none):
@@ -185,8 +185,9 @@ impl StamSturm {
     /// members are no longer `−rem`s), a member coefficient or value is not finite (his
     /// recurrence overflowed, or a value at `x` did), a member's value at an end is within
     /// its rounding bound (`eval_bound.rs`) where its sign could change the count (the rule
-    /// of the `f64` Sturm sequence's checked count; for `P` itself, unless its certified sign
-    /// agrees or it vanishes exactly), or the product
+    /// of the `f64` Sturm sequence's checked count), `P`'s value is 0 where it is neither
+    /// certified non-zero (its certified sign is then counted) nor an exact root, or the
+    /// product
     /// `f·g` of two non-zero values underflowed to zero, so his test `f·g < 0` cannot see the
     /// sign change it is there to count. His count itself is kept as written otherwise.
     pub(crate) fn count_roots_checked(&self, a: f64, b: f64) -> Option<usize> {
@@ -227,14 +228,14 @@ impl StamSturm {
                 0
             };
             *sign = his;
-            if i == 0 && g.abs() <= err {
-                // P itself within rounding of zero: its certified sign must agree with his
-                // value's, or P must vanish exactly (`x` on (−η, η] of `c·x` read 0 at both
-                // ends, where `c·x` underflows: a root lost between them; issue 11).
-                let s = certified_sign(&self.low, x, 0.0);
-                if s != his || (s == 0 && !exact_zero_at(&self.low, x)) {
-                    return None;
-                }
+            if i == 0 && g == 0.0 {
+                // P's value 0: its certified sign, or an exact root (`c·x` on (−η, η]
+                // underflowed to 0 at both ends and the root between was lost; issue 11).
+                // The count then takes that sign (his next product sees ±1 for it).
+                let s = v0_sign_at_zero_value(&self.low, x)?;
+                *sign = s;
+                f = f64::from(s);
+                continue;
             } else if i > 0 && g.abs() <= err && err > 0.0 {
                 *sign = 2;
             }

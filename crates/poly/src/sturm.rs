@@ -33,9 +33,9 @@ use crate::univariate::{Poly, QPoly, UNIT_ROUNDOFF, gamma};
 pub struct SturmSequence<T> {
     polys: Vec<Poly<T>>,
     multiple_roots: bool,
-    /// `f64` only (empty for [`Rat`]): a running bound on each member's coefficient errors,
-    /// `errs[k][j] ≥ |V_k[j] − Ṽ_k[j]|` to first order, where `Ṽ_k` is the member the same
-    /// recurrence gives in exact arithmetic from the stored polynomial (see [`neg_rem_f64`]).
+    /// `f64` only (empty for [`Rat`]): a bound on the rounding of each member coefficient in
+    /// the step that computed it (`P'`'s products, or the remainder's division; not the
+    /// errors carried from earlier members: see [`neg_rem_f64`]).
     errs: Vec<Vec<f64>>,
     /// `f64` only: the sequence cannot stand for the stored polynomial's — a value overflowed
     /// or underflowed below the normal range while it was built, or a remainder coefficient
@@ -192,12 +192,11 @@ impl Poly<f64> {
     /// A Sturm sequence in floating point, normalised for stability: every member is scaled by
     /// the power of two that brings its largest coefficient magnitude into `[1, 2)` (a positive
     /// factor, exact unless a coefficient leaves the normal range, so signs are unchanged),
-    /// and a remainder's leading coefficient is dropped when it is no larger than its error
-    /// bound (its own rounding, `γ(4k + 2)·Σ|terms|`, plus the errors carried from the two
-    /// members it is computed from), so degrees fall when the exact remainder's would.
+    /// and a remainder's leading coefficient is dropped when it is no larger than its own
+    /// rounding bound (`γ(4k + 2)·Σ|terms|`), so degrees fall when the exact remainder's would.
     /// Coefficients are never dropped for being small relative to the others (Wilkinson's
-    /// polynomial has a leading 1 next to 20!). Issue 11: the members carry that running
-    /// error bound per coefficient, and the sequence is marked unusable when a value
+    /// polynomial has a leading 1 next to 20!). Issue 11: the members carry that rounding
+    /// bound per coefficient, and the sequence is marked unusable when a value
     /// overflowed or fell below the normal range on the way (`1e±300` coefficients), so the
     /// checked counts of the root queries can refuse instead of counting noise.
     ///
@@ -229,13 +228,7 @@ impl Poly<f64> {
             errs.push(d_err);
             while seq.last().is_some_and(|v| v.degree() > 0) && !lossy {
                 let n = seq.len();
-                let (r, r_err) = neg_rem_f64(
-                    &seq[n - 2],
-                    &errs[n - 2],
-                    &seq[n - 1],
-                    &errs[n - 1],
-                    &mut lossy,
-                );
+                let (r, r_err) = neg_rem_f64(&seq[n - 2], &seq[n - 1], &mut lossy);
                 if r.is_zero() {
                     break;
                 }
@@ -340,17 +333,8 @@ impl SturmSequence<f64> {
             let coeff_err =
                 e.iter().rev().fold(0.0, |acc, &ej| acc * ax + ej) * (1.0 + gamma(2 * e.len() + 2));
             let err = err + coeff_err;
-            if k == 0 && value.abs() <= err {
-                // V₀ is the stored polynomial up to an exact power of two: a value within
-                // rounding of zero gets the certified tiers (compensated, rescaled past an
-                // underflow or overflow), and a zero they leave must be exact. Else the count
-                // cannot tell which side of `x` a root lies, nor whether `x` is one: `x²`
-                // on (−η, η] read 0 at both ends, where `x²` underflows (issue 11).
-                let s = certified_sign(v.coeffs(), x, 0.0);
-                if s == 0 && !exact_zero_at(v.coeffs(), x) {
-                    return None;
-                }
-                signs[k] = s;
+            if k == 0 && value == 0.0 {
+                signs[k] = v0_sign_at_zero_value(v.coeffs(), x)?;
                 continue;
             }
             signs[k] = if k > 0 && value.abs() <= err && err > 0.0 {
@@ -364,6 +348,20 @@ impl SturmSequence<f64> {
             };
         }
         changes_with_uncertain(signs)
+    }
+}
+
+/// The sign to count for `V₀` (the stored polynomial `c`, up to a positive factor) at `x`
+/// where its computed value is exactly 0: the certified sign (compensated, then rescaled past
+/// an underflow or overflow: `eval_bound.rs`), 0 when `x` is an exact root, `None` when
+/// neither can be shown. A 0 counted where `P` is not zero hides roots: `2.04x²` on a range
+/// narrowed to a few subnormals around 0 underflowed to 0 at both ends and its double root
+/// was counted as none (issue 11). A non-zero value within rounding keeps its computed sign:
+/// the count is then only unsure which side of `x` a root near it lies, as at any end.
+pub(crate) fn v0_sign_at_zero_value(c: &[f64], x: f64) -> Option<i8> {
+    match certified_sign(c, x, 0.0) {
+        0 => exact_zero_at(c, x).then_some(0),
+        s => Some(s),
     }
 }
 
@@ -434,55 +432,46 @@ fn normalise(p: Poly<f64>, mut err: Vec<f64>, lossy: &mut bool) -> (Poly<f64>, V
     (Poly::new_raw(c), err)
 }
 
-/// `−rem(a, d)` in floating point, with a running bound on its coefficient errors, dropping
-/// leading coefficients that are within that bound of zero.
+/// `−rem(a, d)` in floating point, with a bound on the rounding of each of its coefficients,
+/// dropping leading coefficients that are within that bound of zero.
 ///
 /// The bound, per coefficient `j` of the remainder, is `γ(4k + 2)·Σ|terms|` for the
-/// division's own rounding over its `k` steps (Higham §5.1's argument for a sum of products)
-/// plus the first-order effect of the inputs' errors `a_err`, `d_err`: each quotient digit
-/// `c = r_top/lc` carries `(|r_top err| + |c|·d_err[top])/|lc|`, and each update
-/// `r[k + j] −= c·d[j]` adds `|c|·d_err[j] + |c err|·|d[j]|`. Second-order terms (products of
-/// two errors) are left out: this is a heuristic's warning light (issue 11), not a proof;
-/// it is what lets a member whose value at a point is below it be called "uncertain"
-/// ([`SturmSequence::count_roots_checked`]). Sets `lossy` when a value is not finite, a
-/// non-zero remainder coefficient falls below the normal range, or a leading coefficient is
-/// dropped as noise (within its bound but not an exact zero with a zero bound): that is a
-/// decision the arithmetic cannot back, whether the degree then falls by more than one or
-/// the whole remainder goes (a multiple root claimed where two roots may be close).
-fn neg_rem_f64(
-    a: &Poly<f64>,
-    a_err: &[f64],
-    d: &Poly<f64>,
-    d_err: &[f64],
-    lossy: &mut bool,
-) -> (Poly<f64>, Vec<f64>) {
+/// division's own rounding over its `k` steps (Higham §5.1's argument for a sum of products).
+/// It is the member's *own* rounding only: the errors `a` and `d` carry from earlier members
+/// are not propagated. A first-order propagation of them (each quotient digit `c = r_top/lc`
+/// carrying `(|err r_top| + |c|·err lc)/|lc|`, each update `|c|·err d_j + err c·|d_j|`) was
+/// tried for issue 11 and refused every planted-roots polynomial from degree 8 on, where the
+/// sequence in fact counted right (the worst case adds every error with the same sign). It
+/// is what lets a member whose value at a point is below it be called "uncertain"
+/// ([`SturmSequence::count_roots_checked`]): a heuristic's warning light, not a proof. Sets
+/// `lossy` when a value is not finite, a non-zero remainder coefficient falls below the
+/// normal range, or a leading coefficient is dropped as noise (within its bound but not an
+/// exact zero with a zero bound): that is a decision the arithmetic cannot back, whether the
+/// degree then falls by more than one or the whole remainder goes (a multiple root claimed
+/// where two roots may be close).
+fn neg_rem_f64(a: &Poly<f64>, d: &Poly<f64>, lossy: &mut bool) -> (Poly<f64>, Vec<f64>) {
     let (ac, dc) = (a.coeffs(), d.coeffs());
     let dn = dc.len() - 1;
     if ac.len() <= dn {
-        return (-a, a_err.to_vec());
+        return (-a, vec![0.0; ac.len()]);
     }
     let lc = dc[dn];
     let mut r = ac.to_vec();
     let mut mag: Vec<f64> = ac.iter().map(|x| x.abs()).collect();
-    let mut prop = a_err.to_vec();
-    prop.resize(ac.len(), 0.0);
     let steps = ac.len() - dn;
     for k in (0..steps).rev() {
         let c = r[k + dn] / lc;
-        let c_err = (prop[k + dn] + c.abs() * d_err[dn]) / lc.abs();
         for (j, dj) in dc.iter().enumerate().take(dn) {
             r[k + j] -= c * dj;
             mag[k + j] += (c * dj).abs();
-            prop[k + j] += c.abs() * d_err[j] + c_err * dj.abs();
         }
     }
     r.truncate(dn);
     mag.truncate(dn);
-    prop.truncate(dn);
     let g = crate::univariate::gamma(4 * steps + 2);
-    let mut err: Vec<f64> = mag.iter().zip(&prop).map(|(m, e)| g * m + e).collect();
-    while let (Some(x), Some(e)) = (r.last(), err.last()) {
-        if x.abs() > *e {
+    while let (Some(x), Some(m)) = (r.last(), mag.last()) {
+        let own = g * m;
+        if x.abs() > own {
             break;
         }
         // A coefficient dropped as rounding noise (not an exact zero with no error): the
@@ -490,12 +479,13 @@ fn neg_rem_f64(
         // not approximate the exact sequence's (a pair of roots 1.1e-28 apart was read as a
         // double root and counted as none; issue 11). Exact zeros (`x⁴ − 1`'s remainder) are
         // structural and keep the sequence.
-        if *x != 0.0 || *e > 0.0 {
+        if *x != 0.0 || own > 0.0 {
             *lossy = true;
         }
         r.pop();
-        err.pop();
+        mag.pop();
     }
+    let err: Vec<f64> = mag.iter().map(|m| g * m).collect();
     if r.iter().chain(&err).any(|x| !x.is_finite())
         || r.iter().any(|&x| x != 0.0 && x.abs() < f64::MIN_POSITIVE)
     {

@@ -10,12 +10,14 @@
 //!
 //! - **answered**: every query returned `Ok`; where the coefficients are finite, not all
 //!   zero, of degree at most [`ORACLE_DEGREE`], the range has finite ends and the tolerance
-//!   is 0 or 1e-12, the certified methods' roots equal the exact [`QPoly`] oracle's (within
-//!   the tolerance or two ulps) — counted as **checked against the oracle**;
+//!   is 0 or 1e-12, every method's roots equal the exact [`QPoly`] oracle's (within the
+//!   tolerance or two ulps) — counted as **checked against the oracle**;
 //! - **typed error**: some query returned a [`RootError`];
 //!
-//! and fails on a panic, on a certified answer that differs from the oracle, or on a case
-//! slower than [`CASE_BUDGET`] (a hang).
+//! and fails on a panic, on a certified answer that differs from the oracle (or a certified
+//! refusal), on a heuristic answer that differs from it (issue 11: the heuristics may refuse
+//! with [`RootError::Unresolved`], never answer wrong; their `all` roots, smallest root and
+//! isolating intervals are each checked), or on a case slower than [`CASE_BUDGET`] (a hang).
 //!
 //! Smoke run (part of `cargo test`): [`SMOKE_CASES`] cases of degree at most
 //! [`SMOKE_MAX_DEGREE`], deterministic. Longer run, degrees up to 40:
