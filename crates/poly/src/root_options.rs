@@ -36,7 +36,7 @@ pub enum IsolationMethod {
     /// opposite signs — is [`RootError::Unresolved`](crate::RootError::Unresolved), never an
     /// answer. What it does not promise: that no root is missed. A count off by an even
     /// number between ends of equal sign, from rounding the first-order bound does not see,
-    /// stays invisible (the fuzzer's seed 7 finds one in 6 000 cases:
+    /// stays invisible (the fuzzer's seed 7 finds four in 6 000 cases:
     /// `paper-notes/sturm.md`, "What the `f64` heuristics check"). Most multiple roots are
     /// `Unresolved`.
     Sturm,

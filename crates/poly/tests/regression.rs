@@ -629,7 +629,7 @@ fn assert_heuristic_honest(
     let want = oracle(p, lo, hi);
     let o = with(method, x_tol);
     let mut answered = 0;
-    let mut refused = |e: RootError, stats: &RootStats, what: &str| {
+    let refused = |e: RootError, stats: &RootStats, what: &str| {
         assert!(
             matches!(e, RootError::Unresolved { .. }),
             "{method:?} {what}: {e}"
