@@ -15,7 +15,8 @@
 //!
 //! `PEERS_PROFILE=<corpus>` (`entry`, `eye`, `wilkinson`, `planted`, `quartics`, or a growth
 //! corpus `kac<d>`, `cheb<d>`, `planted<d>`) runs only `poly` on that corpus, once, and
-//! prints its statistics: the
+//! prints its statistics (`PEERS_METHOD=sturm` or `stam`: `poly`'s heuristic methods
+//! instead of the certified one, with their refusals in the `unresolved` count): the
 //! load-independent instruction count comes from running that under
 //! `valgrind --tool=callgrind --toggle-collect='*run_poly_only*'`.
 
@@ -391,16 +392,27 @@ fn growth_corpus(name: &str) -> Option<Corpus> {
     ))
 }
 
-/// `poly` alone on one corpus, once (the function callgrind's `--toggle-collect` selects).
+/// `poly` alone on one corpus, once (the function callgrind's `--toggle-collect` selects),
+/// by `method` (the certified default unless `PEERS_METHOD` names a heuristic).
 #[inline(never)]
-fn run_poly_only(corpus: &Corpus) -> (usize, RootStats) {
+fn run_poly_only(corpus: &Corpus, method: Method) -> (usize, RootStats) {
     let mut stats = RootStats::default();
     let wrong = corpus
         .queries
         .iter()
-        .map(|q| corpus.wrong(POLY, q, &mut stats))
+        .map(|q| corpus.wrong(method, q, &mut stats))
         .sum();
     (wrong, stats)
+}
+
+/// The method `PEERS_PROFILE` runs: `PEERS_METHOD=sturm` or `stam` for `poly`'s heuristics
+/// (issue 11: their cost before and after the honesty checks), else the certified default.
+fn profile_method() -> Method {
+    match std::env::var("PEERS_METHOD").as_deref() {
+        Ok("sturm") => POLY_STURM,
+        Ok("stam") => Method::Stam,
+        _ => POLY,
+    }
 }
 
 fn main() {
@@ -412,11 +424,12 @@ fn main() {
             );
             std::process::exit(2);
         };
-        let (wrong, stats) = run_poly_only(&corpus);
+        let (wrong, stats) = run_poly_only(&corpus, profile_method());
         println!(
-            "{}: {} queries, {wrong} wrong, adaptive (re-expanded) / mp / refines / exact / discs decided:undecided (undecided parts): {}",
+            "{}: {} queries, {wrong} wrong, {} unresolved, adaptive (re-expanded) / mp / refines / exact / discs decided:undecided (undecided parts): {}",
             corpus.title,
             corpus.queries.len(),
+            stats.unresolved,
             stats_cell(&stats)
         );
         return;

@@ -32,16 +32,27 @@ pub(crate) fn gamma_ratio_upper(k: usize) -> f64 {
 /// input (otherwise `err` is NaN or infinite and no sign is certain).
 #[inline]
 pub(crate) fn horner_bounded(c: &[f64], x: f64) -> (f64, f64) {
+    horner_bounded_from_top(c.iter().rev(), c.len(), x)
+}
+
+/// [`horner_bounded`] for `len` coefficients given highest degree first (Stam's storage
+/// order, `stam.rs`): the same operations in the same order, so the same value and bound.
+#[inline(always)]
+pub(crate) fn horner_bounded_from_top<'a>(
+    from_top: impl Iterator<Item = &'a f64>,
+    len: usize,
+    x: f64,
+) -> (f64, f64) {
     let ax = x.abs();
     let mut v = 0.0;
     let mut s = 0.0;
     let mut z = 0.0;
-    for &ci in c.iter().rev() {
+    for &ci in from_top {
         v = v * x + ci;
         s = s * ax + ci.abs();
         z = z * ax + 1.0;
     }
-    (v, horner_err(c.len(), s, z))
+    (v, horner_err(len, s, z))
 }
 
 impl Poly<f64> {

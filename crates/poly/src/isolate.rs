@@ -31,7 +31,7 @@ use crate::root_options::{IsolationMethod, RefineMethod, RootOptions, Tolerance}
 use crate::scalar::{Rat, rat_from_f64, rat_to_f64};
 use crate::stam::StamSturm;
 use crate::stats::RootStats;
-use crate::sturm::{SturmSequence, check_finite};
+use crate::sturm::{SturmSequence, check_finite, exact_zero_at};
 use crate::univariate::{
     Poly, QPoly, ROOT_BOUND_MARGIN, UNIT_ROUNDOFF, cauchy_bound_of, root_bound_of,
 };
@@ -626,7 +626,7 @@ impl Poly<f64> {
             IsolationMethod::StamSturm => match StamSturm::new(self) {
                 Some(s) => Isolation::Heuristic(bisect_isolate(
                     self.coeffs(),
-                    |x, y| Some(s.count_roots(x, y)),
+                    |x, y| s.count_roots_checked(x, y),
                     lo,
                     hi,
                     false,
@@ -934,7 +934,8 @@ fn smallest_inner(
                 None if count_contradicted(p.coeffs(), lo, hi) => {
                     Err(RootError::Unresolved { lo, hi })
                 }
-                found => Ok(found),
+                None => Ok(None),
+                Some(t) => confirm_stam_root(p, t, lo, opts.x_tol).map(Some),
             },
             None => Ok(None),
         }),
@@ -1182,8 +1183,10 @@ fn refine_rat_to_f64(seq: &impl SquareFreeSign, lo: Rat, hi: Rat, tol: Tolerance
 /// # Errors
 /// [`RootError::Unresolved`] for a piece whose count is unknown (`count` gave `None`) or
 /// provably wrong: zero while the stored polynomial `c` has certified opposite signs at the
-/// piece's ends ([`count_contradicted`]). Issue 11: a heuristic never answers "no root"
-/// against that evidence.
+/// piece's ends ([`count_contradicted`]); one while its end signs are not certified opposite
+/// (nor `b` an exact root: [`confirmed_single`]), so the piece may hold no root or two; or
+/// more than one in a piece too narrow to split. Issue 11: a heuristic never answers "no
+/// root" against that evidence, nor hands out an interval that nothing confirms.
 fn bisect_isolate(
     c: &[f64],
     count: impl Fn(f64, f64) -> Option<usize>,
@@ -1204,6 +1207,9 @@ fn bisect_isolate(
         }
         let m = 0.5 * a + 0.5 * b;
         if n == 1 || depth >= MAX_HEURISTIC_BISECTIONS || !(m > a && m < b) {
+            if n != 1 || !confirmed_single(c, a, b) {
+                return Err(RootError::Unresolved { lo: a, hi: b });
+            }
             out.push(RootInterval { lo: a, hi: b });
             if first_only {
                 break;
@@ -1221,19 +1227,55 @@ fn bisect_isolate(
 /// `b` (signs at an infinite end from the leading term): then `(a, b)` holds a root of odd
 /// multiplicity, whatever a floating-point count says. Costs two bounded evaluations.
 fn count_contradicted(c: &[f64], a: f64, b: f64) -> bool {
-    // The degree and leading coefficient past any stored zeros (`Poly::new_raw`).
-    let Some(n) = c.iter().rposition(|&x| x != 0.0) else {
-        return false;
+    // The degree past any stored zeros (`Poly::new_raw`).
+    let n = c.iter().rposition(|&x| x != 0.0).unwrap_or(0);
+    n > 0 && end_sign(c, a) * end_sign(c, b) < 0
+}
+
+/// True when the heuristic interval `(a, b]` is confirmed to hold a root: the stored
+/// polynomial `c` has certified opposite signs at its ends (an infinite end signed by the
+/// leading term, as in [`count_contradicted`]), or a certified sign at `a` and an exact zero
+/// at `b` ([`exact_zero_at`]). Costs two bounded evaluations (and an exact one, rarely).
+fn confirmed_single(c: &[f64], a: f64, b: f64) -> bool {
+    if count_contradicted(c, a, b) {
+        return true;
+    }
+    b.is_finite() && certified_sign(c, b, 0.0) == 0 && end_sign(c, a) != 0 && exact_zero_at(c, b)
+}
+
+/// Confirms the root `t` that Stam's search returned on `(lo, …]` with tolerance `x_tol`
+/// (issue 11): the stored polynomial must change sign, by certified signs, between
+/// `t − max(x_tol, one spacing)` (or `lo`, if later) and `t`, or vanish exactly at `t` — so a
+/// root lies within `x_tol` (or one spacing) below `t`; and it must not change sign between
+/// `lo` and that lower point, which would prove a smaller root his counts missed. Anything
+/// else is [`RootError::Unresolved`] on `(lo, t]`. His value is returned unchanged.
+fn confirm_stam_root(p: &Poly<f64>, t: f64, lo: f64, x_tol: f64) -> Result<f64, RootError> {
+    let c = p.coeffs();
+    let below = (t - x_tol).min(t.next_down()).max(lo);
+    let s_below = end_sign(c, below);
+    let s_t = certified_sign(c, t, 0.0);
+    let brackets = s_below != 0 && (s_t == -s_below || (s_t == 0 && exact_zero_at(c, t)));
+    if brackets && !count_contradicted(c, lo, below) {
+        Ok(t)
+    } else {
+        Err(RootError::Unresolved { lo, hi: t })
+    }
+}
+
+/// The certified sign of the stored polynomial `c` at `x`; at an infinite `x`, the sign of
+/// the leading term there (0 for a NaN `x`).
+fn end_sign(c: &[f64], x: f64) -> i8 {
+    let Some(n) = c.iter().rposition(|&v| v != 0.0) else {
+        return 0;
     };
-    let sign = |x: f64| {
-        if x.is_finite() {
-            certified_sign(c, x, 0.0)
-        } else {
-            let lead = if c[n] > 0.0 { 1 } else { -1 };
-            if x < 0.0 && n % 2 == 1 { -lead } else { lead }
-        }
-    };
-    n > 0 && !a.is_nan() && !b.is_nan() && sign(a) * sign(b) < 0
+    if x.is_nan() {
+        0
+    } else if x.is_finite() {
+        certified_sign(c, x, 0.0)
+    } else {
+        let lead = if c[n] > 0.0 { 1 } else { -1 };
+        if x < 0.0 && n % 2 == 1 { -lead } else { lead }
+    }
 }
 
 /// Floating-point Sturm query (heuristic): leftmost interval by counts, then refinement.
@@ -1263,7 +1305,7 @@ fn sturm_smallest(
 /// Refines a heuristic interval `(lo, hi]`. With certified opposite end signs it is a
 /// certified bracket, refined as the certified path refines one (with an exact finish when
 /// `f64` stalls); a certified-zero-free `lo` and an undecidable `hi` give `hi` when the
-/// stored polynomial is within rounding of zero there (a finite error bound). Otherwise the
+/// stored polynomial vanishes exactly there ([`exact_zero_at`]). Otherwise the
 /// counts promised a root that no sign change confirms (a wrong count, or a root of even
 /// multiplicity): the interval is reported as [`RootError::Unresolved`], never its midpoint
 /// as a root (issue 11: roots 1e6 and 1e9 came back as 878 417.97 and 887 500 000).
@@ -1285,10 +1327,10 @@ fn refine_heuristic(
             opts.refine,
             stats,
         ))
-    } else if s_hi == 0 && s_lo != 0 && p.eval_with_error(hi).err.is_finite() {
-        // Undecided because `p(hi)` is within rounding of zero — not because the bound
-        // overflowed: `6.61x³ − … − f64::MAX` got the Cauchy bound 2.72e307 as a root
-        // (issue 13 follow-up).
+    } else if s_hi == 0 && s_lo != 0 && exact_zero_at(c, hi) {
+        // `p(hi)` is exactly zero. Within rounding of zero is not enough: `6.61x³ − … −
+        // f64::MAX` got the Cauchy bound 2.72e307 as a root (issue 13 follow-up), and a
+        // subnormal-coefficient case got 4.5e-13 for roots at ±1e-308 and 0 (issue 11).
         Ok(hi)
     } else {
         Err(RootError::Unresolved { lo, hi })

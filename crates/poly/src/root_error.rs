@@ -23,10 +23,12 @@ pub enum RootError {
     /// A tolerance is NaN, negative or infinite, or a relative tolerance is 1 or more.
     InvalidTolerance,
     /// A heuristic method ([`IsolationMethod::Sturm`](crate::IsolationMethod::Sturm),
-    /// [`IsolationMethod::StamSturm`](crate::IsolationMethod::StamSturm)) counted a root in
-    /// `(lo, hi]` but no certified sign change confirms it, so it cannot narrow the interval
-    /// (a wrong floating-point count, or a root of even multiplicity). The certified methods
-    /// never return this.
+    /// [`IsolationMethod::StamSturm`](crate::IsolationMethod::StamSturm)) cannot stand by
+    /// its answer on `(lo, hi]`: it counted a root there that no certified sign change
+    /// confirms (a wrong floating-point count, or a root of even multiplicity), its count
+    /// there is provably wrong or unknown (a sign within its rounding bound, a sequence that
+    /// overflowed or underflowed), or a root it found has a certified sign change before it.
+    /// The certified methods never return this.
     Unresolved {
         /// Lower end of the interval the counts gave.
         lo: f64,

@@ -27,25 +27,32 @@ pub enum IsolationMethod {
     ///
     /// What it promises (issue 11, "heuristic methods never lie silently"): every root it
     /// returns is bracketed by certified opposite signs of the stored polynomial (or is an
-    /// end where the polynomial is within rounding of zero) and refined as the certified
-    /// path refines; a count it can tell is wrong or unknown — a member's sign within its own
-    /// rounding bound that decides the count, or "no root" between certified opposite signs
-    /// — is [`RootError::Unresolved`](crate::RootError::Unresolved), never an answer. What it
-    /// does not promise: that no root is missed. A wrong count of an even number of roots
-    /// between ends of equal sign, from rounding in the remainder sequence itself, is
-    /// invisible to these checks (the fuzzer's case: roots −1 and 1.1e-44 of a degree-33
-    /// polynomial with coefficients up to `f64::MAX`, both missed).
+    /// exact root) and refined as the certified path refines, so it is within `x_tol` of a
+    /// true root; every interval [`Poly::isolate_roots_with`](crate::Poly::isolate_roots_with)
+    /// returns has certified opposite end signs. A count it can tell is wrong or unknown — a
+    /// member's sign within its rounding bound (the members carry a running bound on their
+    /// coefficient errors) that decides the count, a sequence that overflowed, underflowed
+    /// or needed a remainder coefficient dropped as noise, "no root" between certified
+    /// opposite signs — is [`RootError::Unresolved`](crate::RootError::Unresolved), never an
+    /// answer. What it does not promise: that no root is missed. A count off by an even
+    /// number between ends of equal sign, from rounding the first-order bound does not see,
+    /// stays invisible (the fuzzer's seed 7 finds four in 6 000 cases:
+    /// `paper-notes/sturm.md`, "What the `f64` heuristics check"). Most multiple roots are
+    /// `Unresolved`.
     Sturm,
     /// Stam's 1988 procedure as written in `ray2.c` (Annexe B): his cross-multiplied Sturm
     /// recurrence normalised by the absolute value of each remainder's leading coefficient, his
     /// count-driven bisection, and his bisection refinement. Kept for comparison; the thesis
     /// reports it unstable above degree 8 (seed §4, p. 30).
     ///
-    /// Its promises are those of [`IsolationMethod::Sturm`] except the evaluation-bound
-    /// check (Stam's recurrence is kept as written): a root returned is confirmed by a sign
-    /// change, "no root" between certified opposite end signs is reported as
-    /// [`RootError::Unresolved`](crate::RootError::Unresolved), and an even number of
-    /// roots between ends of equal sign can be missed.
+    /// Its promises are those of [`IsolationMethod::Sturm`]: his recurrence is kept as
+    /// written and carries no error bound, but a sequence where it visibly failed (left the
+    /// normal case of degrees dropping by one, overflowed, went below the normal range, or
+    /// produced a leading coefficient below the rounding of its member's others), a member
+    /// sign within its evaluation bound that decides the count, and an underflowed product
+    /// in his sign test are [`RootError::Unresolved`](crate::RootError::Unresolved); a root
+    /// returned is confirmed by a certified sign change within `x_tol` below it and none
+    /// before it. An even number of roots between ends of equal sign can still be missed.
     StamSturm,
     /// Exact rational Sturm sequence of the stored polynomial (converted exactly with
     /// [`Poly::to_rat`](crate::Poly::to_rat)), bisection on rationals. Certified and slow;

@@ -16,7 +16,9 @@
 //! a bisection that never saw `P` change sign) the query reports
 //! [`RootError::Unresolved`] instead.
 
+use crate::eval_bound::horner_bounded_from_top;
 use crate::root_error::RootError;
+use crate::sturm::{CHECKED_STACK, changes_with_uncertain, v0_sign_at_zero_value};
 use crate::univariate::Poly;
 
 /// Most bisections in [`StamSturm::smallest_root`]'s isolation loop (the original has none):
@@ -27,11 +29,27 @@ const MAX_ISOLATION_STEPS: u32 = 200;
 /// from the widest `f64` interval to adjacent numbers.
 const MAX_REFINE_STEPS: u32 = 2200;
 
+/// The largest ratio of a member's other coefficients to its leading one, after his
+/// normalisation, that [`StamSturm::count_roots_checked`] accepts: `1/ε`. Each coefficient of
+/// a member carries at least a rounding of `u = ε/2` relative to the largest one, so past
+/// this ratio the leading coefficient is below that rounding, and the next remainder (whose
+/// quotient divides by it) is decided by noise (issue 11: `−0.376x⁴ − 3.6e-121x² + 7.6x −
+/// 0.094` lost its roots 0.0123 and 2.72 this way). A relative bound, on one member.
+const MAX_TAIL_OVER_LEAD: f64 = 1.0 / f64::EPSILON;
+
 /// Stam's Sturm sequence: member `k` stored highest power first, as in his `STURM_SERIE`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StamSturm {
     /// `members[k][0]` is the leading coefficient of `V_k`.
     members: Vec<Vec<f64>>,
+    /// `P`'s coefficients, lowest degree first (for its certified sign).
+    low: Vec<f64>,
+    /// A member's leading coefficient came out exactly zero (his shift loop ran: his
+    /// recurrence gives `−rem` only when each degree drops by one, so past that point the
+    /// members are not a Sturm sequence), a coefficient of `P` or of a member is below the
+    /// normal range or not finite, or a member's leading coefficient is below the rounding of
+    /// its others ([`MAX_TAIL_OVER_LEAD`]): [`StamSturm::count_roots_checked`] refuses.
+    abnormal: bool,
 }
 
 impl StamSturm {
@@ -54,6 +72,10 @@ impl StamSturm {
         let s1: Vec<f64> = (0..deg).map(|i| (deg - i) as f64 * members[0][i]).collect();
         members.push(s1);
         let mut n0 = deg;
+        let mut abnormal = members
+            .iter()
+            .flatten()
+            .any(|c| *c != 0.0 && c.abs() < f64::MIN_POSITIVE);
         let mut j = 2;
         while j <= n0 {
             let (s0, s1) = (&members[members.len() - 2], &members[members.len() - 1]);
@@ -75,6 +97,18 @@ impl StamSturm {
                 }
             }
             s2[0] /= x;
+            // His recurrence multiplies coefficients together: one that left the normal range
+            // (or overflowed) no longer carries the digits the signs need (issue 11: roots
+            // 0.78 and 5.4 of a quartic with a 1.6e-308 coefficient were both lost).
+            abnormal |= s2
+                .iter()
+                .any(|c| !c.is_finite() || (*c != 0.0 && c.abs() < f64::MIN_POSITIVE));
+            // After his division by |lead| the leading coefficient is ±1: a tail beyond
+            // MAX_TAIL_OVER_LEAD means the unscaled lead was below the others' rounding.
+            abnormal |= s2
+                .iter()
+                .skip(1)
+                .any(|c| c.abs() > MAX_TAIL_OVER_LEAD * s2[0].abs());
             members.push(s2);
             // while (S1->a[0] == 0.0): shift the coefficients left and append a zero, keeping
             // the stored degree (so the member is evaluated as x times the shifted one, as in
@@ -84,6 +118,7 @@ impl StamSturm {
                 if last.first().is_none_or(|&c| c != 0.0) {
                     break;
                 }
+                abnormal = true;
                 last.rotate_left(1);
                 if let Some(z) = last.last_mut() {
                     *z = 0.0;
@@ -92,12 +127,20 @@ impl StamSturm {
                 if n0 <= j {
                     // His `return n0`: members V_0 … V_n0 are used.
                     members.truncate(n0 + 1);
-                    return Some(StamSturm { members });
+                    return Some(StamSturm {
+                        members,
+                        low: p.coeffs().to_vec(),
+                        abnormal,
+                    });
                 }
             }
             j += 1;
         }
-        Some(StamSturm { members })
+        Some(StamSturm {
+            members,
+            low: p.coeffs().to_vec(),
+            abnormal,
+        })
     }
 
     /// `V(i, x)`: member `i` at `x` by Horner's rule.
@@ -136,6 +179,78 @@ impl StamSturm {
             .saturating_sub(self.sign_changes_at(b))
     }
 
+    /// [`count_roots`](Self::count_roots), or `None` when his arithmetic visibly failed at an
+    /// end (issue 11, "heuristic methods never lie silently"): his recurrence left its normal
+    /// case (a leading coefficient exactly zero, so a degree dropped by more than one and the
+    /// members are no longer `−rem`s), a member coefficient or value is not finite (his
+    /// recurrence overflowed, or a value at `x` did), a member's value at an end is within
+    /// its rounding bound (`eval_bound.rs`) where its sign could change the count (the rule
+    /// of the `f64` Sturm sequence's checked count), `P`'s value is 0 where it is neither
+    /// certified non-zero (its certified sign is then counted) nor an exact root, or the
+    /// product
+    /// `f·g` of two non-zero values underflowed to zero, so his test `f·g < 0` cannot see the
+    /// sign change it is there to count. His count itself is kept as written otherwise.
+    pub(crate) fn count_roots_checked(&self, a: f64, b: f64) -> Option<usize> {
+        if a.is_nan() || b.is_nan() || a >= b {
+            return Some(0);
+        }
+        let (wa, wb) = (self.sign_changes_checked(a)?, self.sign_changes_checked(b)?);
+        Some(wa.saturating_sub(wb))
+    }
+
+    /// `W(x)` with the checks of [`count_roots_checked`](Self::count_roots_checked).
+    fn sign_changes_checked(&self, x: f64) -> Option<usize> {
+        if self.abnormal {
+            return None;
+        }
+        // Signs with 2 for "uncertain", as in the f64 Sturm sequence's checked count.
+        let mut stack = [0i8; CHECKED_STACK];
+        let mut heap = Vec::new();
+        let signs: &mut [i8] = if self.members.len() <= CHECKED_STACK {
+            &mut stack[..self.members.len()]
+        } else {
+            heap.resize(self.members.len(), 0);
+            &mut heap
+        };
+        let mut f = 0.0;
+        for ((i, m), sign) in self.members.iter().enumerate().zip(signs.iter_mut()) {
+            // His value `V(i, x)` (the same Horner steps), with the rounding bound of
+            // `eval_bound.rs` computed alongside.
+            let (g, err) = horner_bounded_from_top(m.iter(), m.len(), x);
+            if !g.is_finite() || !err.is_finite() {
+                return None;
+            }
+            let his = if g > 0.0 {
+                1
+            } else if g < 0.0 {
+                -1
+            } else {
+                0
+            };
+            *sign = his;
+            if i == 0 && g == 0.0 {
+                // P's value 0: its certified sign, or an exact root (`c·x` on (−η, η]
+                // underflowed to 0 at both ends and the root between was lost; issue 11).
+                // The count then takes that sign (his next product sees ±1 for it).
+                let s = v0_sign_at_zero_value(&self.low, x)?;
+                *sign = s;
+                f = f64::from(s);
+                continue;
+            } else if i > 0 && g.abs() <= err && err > 0.0 {
+                *sign = 2;
+            }
+            if g == 0.0 {
+                continue;
+            }
+            if f != 0.0 && f * g == 0.0 {
+                // His test `f·g < 0` would miss this change.
+                return None;
+            }
+            f = g;
+        }
+        changes_with_uncertain(signs)
+    }
+
     /// `IntAlgSurf`'s search: halve `[t1, t2]` (keeping the left half when it holds a root
     /// by the counts) until the count is one, then bisect on the sign of `P` until the width
     /// is at most `precision`, and return the right end `t2`, as the original does.
@@ -146,8 +261,9 @@ impl StamSturm {
     ///
     /// # Errors
     /// [`RootError::Unresolved`] with the interval the counts gave when the counts become
-    /// inconsistent, the isolation loop hits its cap, or `P` never changed sign in the
-    /// isolated interval (no value is returned that nothing supports).
+    /// inconsistent or visibly fail ([`count_roots_checked`](Self::count_roots_checked)'s
+    /// overflow and underflow checks), the isolation loop hits its cap, or `P` never changed
+    /// sign in the isolated interval (no value is returned that nothing supports).
     pub fn smallest_root(
         &self,
         t1: f64,
@@ -155,12 +271,15 @@ impl StamSturm {
         precision: f64,
     ) -> Result<Option<f64>, RootError> {
         let (mut t1, mut t2) = (t1, t2);
-        let mut n1 = self.sign_changes_at(t1);
-        let mut n2 = self.sign_changes_at(t2);
+        let unresolved = |lo, hi| Err(RootError::Unresolved { lo, hi });
+        let (Some(mut n1), Some(mut n2)) =
+            (self.sign_changes_checked(t1), self.sign_changes_checked(t2))
+        else {
+            return unresolved(t1, t2);
+        };
         if n1 <= n2 {
             return Ok(None);
         }
-        let unresolved = |lo, hi| Err(RootError::Unresolved { lo, hi });
         let mut steps = 0;
         while n1 - n2 != 1 {
             steps += 1;
@@ -168,7 +287,9 @@ impl StamSturm {
                 return unresolved(t1, t2);
             }
             let m = 0.5 * (t1 + t2);
-            let n = self.sign_changes_at(m);
+            let Some(n) = self.sign_changes_checked(m) else {
+                return unresolved(t1, t2);
+            };
             if n1 == n {
                 t1 = m;
                 n1 = n;

@@ -18,11 +18,12 @@
 use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
 
-use crate::eval_bound::horner_bounded;
+use crate::eval_bound::{certified_sign, horner_bounded};
 use crate::int_poly::IntPoly;
+use crate::rescale::{exponent, ldexp};
 use crate::root_error::RootError;
 use crate::scalar::{Rat, Scalar};
-use crate::univariate::{Poly, QPoly};
+use crate::univariate::{Poly, QPoly, UNIT_ROUNDOFF, gamma};
 
 /// A Sturm sequence `V₀, V₁, …, V_q` (seed eq. 3.17): `σ(a) − σ(b)` counts distinct real roots.
 ///
@@ -32,6 +33,14 @@ use crate::univariate::{Poly, QPoly};
 pub struct SturmSequence<T> {
     polys: Vec<Poly<T>>,
     multiple_roots: bool,
+    /// `f64` only (empty for [`Rat`]): a bound on the rounding of each member coefficient in
+    /// the step that computed it (`P'`'s products, or the remainder's division; not the
+    /// errors carried from earlier members: see [`neg_rem_f64`]).
+    errs: Vec<Vec<f64>>,
+    /// `f64` only: the sequence cannot stand for the stored polynomial's — a value overflowed
+    /// or underflowed below the normal range while it was built, or a remainder coefficient
+    /// was dropped as rounding noise (issue 11; see [`neg_rem_f64`]).
+    lossy: bool,
 }
 
 impl<T> SturmSequence<T> {
@@ -120,6 +129,8 @@ impl QPoly {
         Ok(SturmSequence {
             polys: seq.iter().map(IntPoly::to_qpoly).collect(),
             multiple_roots,
+            errs: Vec::new(),
+            lossy: false,
         })
     }
 }
@@ -178,12 +189,16 @@ impl SturmSequence<Rat> {
 }
 
 impl Poly<f64> {
-    /// A Sturm sequence in floating point, normalised for stability: every member is divided
-    /// by its largest coefficient magnitude (a positive factor, so signs are unchanged), and a
-    /// remainder's leading coefficient is dropped when it is no larger than its own rounding
-    /// error (tracked during the division as `γ(2k)·Σ|terms|`), so degrees fall when the
-    /// exact remainder's would. Coefficients are never dropped for being small relative to
-    /// the others (Wilkinson's polynomial has a leading 1 next to 20!).
+    /// A Sturm sequence in floating point, normalised for stability: every member is scaled by
+    /// the power of two that brings its largest coefficient magnitude into `[1, 2)` (a positive
+    /// factor, exact unless a coefficient leaves the normal range, so signs are unchanged),
+    /// and a remainder's leading coefficient is dropped when it is no larger than its own
+    /// rounding bound (`γ(4k + 2)·Σ|terms|`), so degrees fall when the exact remainder's would.
+    /// Coefficients are never dropped for being small relative to the others (Wilkinson's
+    /// polynomial has a leading 1 next to 20!). Issue 11: the members carry that rounding
+    /// bound per coefficient, and the sequence is marked unusable when a value
+    /// overflowed or fell below the normal range on the way (`1e±300` coefficients), so the
+    /// checked counts of the root queries can refuse instead of counting noise.
     ///
     /// # Accuracy
     /// A heuristic. Each remainder is rounded, so [`SturmSequence::count_roots`] can be wrong
@@ -199,23 +214,35 @@ impl Poly<f64> {
         if self.is_zero() {
             return Err(RootError::ZeroPolynomial);
         }
-        let p = normalise(self.clone());
+        let mut lossy = false;
+        let (p, _) = normalise(self.clone(), Vec::new(), &mut lossy);
         let mut seq = vec![p.clone()];
+        // V₀ is the stored polynomial times an exact power of two: no coefficient error.
+        let mut errs = vec![vec![0.0; p.coeffs().len()]];
         if p.degree() > 0 {
-            seq.push(normalise(p.derivative()));
-            while seq.last().is_some_and(|v| v.degree() > 0) {
+            let d = p.derivative();
+            // P' has one rounding per coefficient (i·cᵢ): u·|i·cᵢ|.
+            let d_err = d.coeffs().iter().map(|c| c.abs() * UNIT_ROUNDOFF).collect();
+            let (d, d_err) = normalise(d, d_err, &mut lossy);
+            seq.push(d);
+            errs.push(d_err);
+            while seq.last().is_some_and(|v| v.degree() > 0) && !lossy {
                 let n = seq.len();
-                let r = neg_rem_f64(&seq[n - 2], &seq[n - 1]);
+                let (r, r_err) = neg_rem_f64(&seq[n - 2], &seq[n - 1], &mut lossy);
                 if r.is_zero() {
                     break;
                 }
-                seq.push(normalise(r));
+                let (r, r_err) = normalise(r, r_err, &mut lossy);
+                seq.push(r);
+                errs.push(r_err);
             }
         }
         let multiple_roots = seq.last().is_some_and(|g| g.degree() > 0);
         Ok(SturmSequence {
             polys: seq,
             multiple_roots,
+            errs,
+            lossy,
         })
     }
 }
@@ -277,60 +304,156 @@ impl SturmSequence<f64> {
     }
 
     /// `σ(x)`, or `None` when an uncertain member sign could change it (see
-    /// [`count_roots_checked`](Self::count_roots_checked)).
+    /// [`count_roots_checked`](Self::count_roots_checked)), or when the sequence is unusable
+    /// (built with an overflow or an underflow) or a member's value is not finite.
     fn sign_changes_checked(&self, x: f64) -> Option<usize> {
+        if self.lossy {
+            return None;
+        }
         if x.is_infinite() {
             return Some(self.sign_changes_at(x));
         }
-        // Signs with 2 for "uncertain"; V₀ keeps its computed sign.
-        let signs: Vec<i8> = self
-            .polys
-            .iter()
-            .enumerate()
-            .map(|(k, v)| {
-                let (value, err) = horner_bounded(v.coeffs(), x);
-                if k > 0 && value.abs() <= err && err > 0.0 {
-                    2
-                } else if value > 0.0 {
-                    1
-                } else if value < 0.0 {
-                    -1
-                } else {
-                    0
-                }
-            })
-            .collect();
-        for (k, &s) in signs.iter().enumerate() {
-            if s != 2 {
+        // Signs with 2 for "uncertain"; V₀'s is certified.
+        let mut stack = [0i8; CHECKED_STACK];
+        let mut heap = Vec::new();
+        let signs: &mut [i8] = if self.polys.len() <= CHECKED_STACK {
+            &mut stack[..self.polys.len()]
+        } else {
+            heap.resize(self.polys.len(), 0);
+            &mut heap
+        };
+        for (k, (v, e)) in self.polys.iter().zip(&self.errs).enumerate() {
+            let (value, err) = horner_bounded(v.coeffs(), x);
+            if !value.is_finite() || !err.is_finite() {
+                return None;
+            }
+            // The member's coefficient errors at |x| (zero for V₀), raised for the rounding
+            // of this sum as Horner's bound is (n + 1 terms).
+            let ax = x.abs();
+            let coeff_err =
+                e.iter().rev().fold(0.0, |acc, &ej| acc * ax + ej) * (1.0 + gamma(2 * e.len() + 2));
+            let err = err + coeff_err;
+            if k == 0 && value == 0.0 {
+                signs[k] = v0_sign_at_zero_value(v.coeffs(), x)?;
                 continue;
             }
-            let before = signs[..k].iter().rev().find(|&&t| t != 0);
-            let after = signs[k + 1..].iter().find(|&&t| t != 0);
-            match (before, after) {
-                (Some(&l), Some(&r)) if l != 2 && r != 2 && l == -r => {}
-                _ => return None,
-            }
+            signs[k] = if k > 0 && value.abs() <= err && err > 0.0 {
+                2
+            } else if value > 0.0 {
+                1
+            } else if value < 0.0 {
+                -1
+            } else {
+                0
+            };
         }
-        Some(count_changes(signs.into_iter().filter(|&s| s != 2)))
+        changes_with_uncertain(signs)
     }
 }
 
-/// Divides by the largest coefficient magnitude (a positive number).
-fn normalise(p: Poly<f64>) -> Poly<f64> {
+/// The sign to count for `V₀` (the stored polynomial `c`, up to a positive factor) at `x`
+/// where its computed value is exactly 0: the certified sign (compensated, then rescaled past
+/// an underflow or overflow: `eval_bound.rs`), 0 when `x` is an exact root, `None` when
+/// neither can be shown. A 0 counted where `P` is not zero hides roots: `2.04x²` on a range
+/// narrowed to a few subnormals around 0 underflowed to 0 at both ends and its double root
+/// was counted as none (issue 11). A non-zero value within rounding keeps its computed sign:
+/// the count is then only unsure which side of `x` a root near it lies, as at any end.
+pub(crate) fn v0_sign_at_zero_value(c: &[f64], x: f64) -> Option<i8> {
+    match certified_sign(c, x, 0.0) {
+        0 => exact_zero_at(c, x).then_some(0),
+        s => Some(s),
+    }
+}
+
+/// Sign changes in `signs` (−1, 0, 1, or 2 for "uncertain"), zeros omitted (eq. 3.21), or
+/// `None` when an uncertain sign could change the count: it is first or last among the
+/// non-zero signs, or its nearest non-zero neighbours are not certain and opposite. (A lone
+/// uncertain sign between certain opposite neighbours adds one change whichever it is.)
+pub(crate) fn changes_with_uncertain(signs: &[i8]) -> Option<usize> {
+    for (k, &s) in signs.iter().enumerate() {
+        if s != 2 {
+            continue;
+        }
+        let before = signs[..k].iter().rev().find(|&&t| t != 0);
+        let after = signs[k + 1..].iter().find(|&&t| t != 0);
+        match (before, after) {
+            (Some(&l), Some(&r)) if l != 2 && r != 2 && l == -r => {}
+            _ => return None,
+        }
+    }
+    Some(count_changes(signs.iter().copied().filter(|&s| s != 2)))
+}
+
+/// True when the polynomial with coefficients `c` vanishes exactly at the finite `x`
+/// (rational evaluation: the rare path where no `f64` bound can sign `p(x)`).
+pub(crate) fn exact_zero_at(c: &[f64], x: f64) -> bool {
+    let (Some(q), Some(xq)) = (
+        Poly::new(c.to_vec()).to_rat(),
+        crate::scalar::rat_from_f64(x),
+    ) else {
+        return false;
+    };
+    q.eval(&xq).is_zero()
+}
+
+/// Members whose checked signs are kept on the stack (longer sequences allocate): 64 covers
+/// every degree below 64, all the renderer and the stability suite ask.
+pub(crate) const CHECKED_STACK: usize = 64;
+
+/// Scales `p` and its coefficient errors `err` (empty: none yet, filled with zeros) by the
+/// power of two `2^-e` that brings the largest coefficient magnitude into `[1, 2)`: a
+/// positive factor, exact for every coefficient that stays in the normal range
+/// (`rescale.rs`'s [`ldexp`]). Sets `lossy` when a non-zero coefficient leaves the normal
+/// range (the member would no longer be the sequence's member up to a positive factor) or
+/// a coefficient or error is not finite.
+fn normalise(p: Poly<f64>, mut err: Vec<f64>, lossy: &mut bool) -> (Poly<f64>, Vec<f64>) {
+    err.resize(p.coeffs().len(), 0.0);
     let m = p.max_abs_coeff();
-    if m == 0.0 || !m.is_finite() {
-        return p;
+    if !m.is_finite() || err.iter().any(|e| !e.is_finite()) {
+        *lossy = true;
+        return (p, err);
     }
-    p.scale(&(1.0 / m))
+    if m == 0.0 {
+        return (p, err);
+    }
+    let e = -exponent(m);
+    let mut c = p.into_coeffs();
+    for x in &mut c {
+        let y = ldexp(*x, e);
+        if *x != 0.0 && y.abs() < f64::MIN_POSITIVE {
+            *lossy = true;
+        }
+        *x = y;
+    }
+    for x in &mut err {
+        // Rounded up: an error that underflows is kept at the smallest subnormal.
+        *x = ldexp(*x, e).max(if *x > 0.0 { f64::from_bits(1) } else { 0.0 });
+    }
+    (Poly::new_raw(c), err)
 }
 
-/// `−rem(a, d)` in floating point, dropping leading coefficients that are within their own
-/// rounding error of zero (error tracked as `γ(2k)·Σ|aᵢ| + Σ|c·dⱼ|` over the `k` steps).
-fn neg_rem_f64(a: &Poly<f64>, d: &Poly<f64>) -> Poly<f64> {
+/// `−rem(a, d)` in floating point, with a bound on the rounding of each of its coefficients,
+/// dropping leading coefficients that are within that bound of zero.
+///
+/// The bound, per coefficient `j` of the remainder, is `γ(4k + 2)·Σ|terms|` for the
+/// division's own rounding over its `k` steps (Higham §5.1's argument for a sum of products).
+/// It is the member's *own* rounding only: the errors `a` and `d` carry from earlier members
+/// are not propagated. A first-order propagation of them (each quotient digit `c = r_top/lc`
+/// carrying `(|err r_top| + |c|·err lc)/|lc|`, each update `|c|·err d_j + err c·|d_j|`) was
+/// tried for issue 11 and refused every planted-roots polynomial from degree 8 on, where the
+/// sequence in fact counted right (the worst case adds every error with the same sign). It
+/// is what lets a member whose value at a point is below it be called "uncertain"
+/// ([`SturmSequence::count_roots_checked`]): a heuristic's warning light, not a proof. Sets
+/// `lossy` when a value is not finite, a non-zero remainder coefficient falls below the
+/// normal range, or a leading coefficient is dropped as noise (within its bound but not an
+/// exact zero with a zero bound): that is a decision the arithmetic cannot back, whether the
+/// degree then falls by more than one or the whole remainder goes (a multiple root claimed
+/// where two roots may be close).
+fn neg_rem_f64(a: &Poly<f64>, d: &Poly<f64>, lossy: &mut bool) -> (Poly<f64>, Vec<f64>) {
     let (ac, dc) = (a.coeffs(), d.coeffs());
     let dn = dc.len() - 1;
     if ac.len() <= dn {
-        return -a;
+        return (-a, vec![0.0; ac.len()]);
     }
     let lc = dc[dn];
     let mut r = ac.to_vec();
@@ -347,13 +470,28 @@ fn neg_rem_f64(a: &Poly<f64>, d: &Poly<f64>) -> Poly<f64> {
     mag.truncate(dn);
     let g = crate::univariate::gamma(4 * steps + 2);
     while let (Some(x), Some(m)) = (r.last(), mag.last()) {
-        if x.abs() > g * m {
+        let own = g * m;
+        if x.abs() > own {
             break;
+        }
+        // A coefficient dropped as rounding noise (not an exact zero with no error): the
+        // degree now falls by a decision, not by arithmetic, and the members that follow need
+        // not approximate the exact sequence's (a pair of roots 1.1e-28 apart was read as a
+        // double root and counted as none; issue 11). Exact zeros (`x⁴ − 1`'s remainder) are
+        // structural and keep the sequence.
+        if *x != 0.0 || own > 0.0 {
+            *lossy = true;
         }
         r.pop();
         mag.pop();
     }
-    Poly::new(r.into_iter().map(|x| -x).collect())
+    let err: Vec<f64> = mag.iter().map(|m| g * m).collect();
+    if r.iter().chain(&err).any(|x| !x.is_finite())
+        || r.iter().any(|&x| x != 0.0 && x.abs() < f64::MIN_POSITIVE)
+    {
+        *lossy = true;
+    }
+    (Poly::new(r.into_iter().map(|x| -x).collect()), err)
 }
 
 pub(crate) fn check_finite(c: &[f64]) -> Result<(), RootError> {
@@ -501,6 +639,8 @@ mod tests {
                 Poly::new(vec![last]),
             ],
             multiple_roots: false,
+            errs: vec![vec![0.0; 2], vec![0.0; 2], vec![0.0]],
+            lossy: false,
         };
         let same = seq(1.0);
         assert_eq!(

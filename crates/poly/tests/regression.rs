@@ -614,3 +614,261 @@ fn undecided_linear_node_is_halved_not_jumped() {
         );
     }
 }
+
+/// Every heuristic query on `p` over `(lo, hi]` with `x_tol` either matches the exact oracle
+/// — `all` root for root, `smallest` its first root, each `isolate` interval holding exactly
+/// one of its roots — or is [`RootError::Unresolved`], counted in [`RootStats::unresolved`]
+/// (issue 11, "heuristic methods never lie silently"). Returns how many queries answered.
+fn assert_heuristic_honest(
+    p: &Poly<f64>,
+    lo: f64,
+    hi: f64,
+    x_tol: f64,
+    method: IsolationMethod,
+) -> usize {
+    let want = oracle(p, lo, hi);
+    let o = with(method, x_tol);
+    let mut answered = 0;
+    let refused = |e: RootError, stats: &RootStats, what: &str| {
+        assert!(
+            matches!(e, RootError::Unresolved { .. }),
+            "{method:?} {what}: {e}"
+        );
+        assert_eq!(
+            stats.unresolved, 1,
+            "{method:?} {what}: counted as unresolved"
+        );
+    };
+    let mut stats = RootStats::default();
+    match p.real_roots_with(lo, hi, &o, &mut stats) {
+        Ok(got) => {
+            assert_roots_match(&got, &want, x_tol, &format!("{method:?} all"));
+            answered += 1;
+        }
+        Err(e) => refused(e, &stats, "all"),
+    }
+    let mut stats = RootStats::default();
+    match p.try_smallest_root(lo, hi, &o, &mut stats) {
+        Ok(got) => {
+            assert_roots_match(
+                got.as_slice(),
+                &want[..want.len().min(1)],
+                x_tol,
+                &format!("{method:?} smallest"),
+            );
+            answered += 1;
+        }
+        Err(e) => refused(e, &stats, "smallest"),
+    }
+    let mut stats = RootStats::default();
+    match p.isolate_roots_with(lo, hi, &o, &mut stats) {
+        Ok(ivs) => {
+            assert_eq!(
+                ivs.len(),
+                want.len(),
+                "{method:?} isolate: {ivs:?}, exact {want:?}"
+            );
+            for (iv, w) in ivs.iter().zip(&want) {
+                assert!(
+                    iv.lo <= *w && *w <= iv.hi,
+                    "{method:?} isolate: {iv:?} misses {w:e}"
+                );
+            }
+            answered += 1;
+        }
+        Err(e) => refused(e, &stats, "isolate"),
+    }
+    answered
+}
+
+/// Issue 11, found by the coefficient fuzzer (seed 7, case 718 of 6 000): on `(−10, 10]` the
+/// range is first narrowed to the root bound, here a padding of a few subnormals around 0,
+/// and `2.04·x²` underflows to 0 at both of its ends. The `f64` Sturm count then read no sign
+/// change at either end and both heuristics answered "no root" for the double root 0. `V₀`'s
+/// sign now comes from the certified tiers (which rescale past the underflow), and a zero
+/// they leave must be exact.
+#[test]
+fn sturm_value_underflowed_at_both_ends_lost_the_double_root_0() {
+    let p = Poly::new(vec![0.0, 0.0, 2.0434860911609967]);
+    assert_eq!(oracle(&p, -10.0, 10.0), vec![0.0], "the oracle");
+    for method in HEURISTIC {
+        assert_heuristic_honest(&p, -10.0, 10.0, 0.0, method);
+    }
+}
+
+/// Issue 11, coefficient fuzzer (seed 7, case 431): `StamSturm` answered "no root" for the
+/// root 0 of `−7.04e-75·x` on `(−1e300, 1e300]`: on the narrowed range his values `c·x`
+/// underflow to 0 at both ends, and a zero is skipped in his count. His count now refuses
+/// where `P`'s own value is within rounding of zero and its certified sign disagrees.
+#[test]
+fn stam_value_underflowed_lost_the_root_0_of_a_tiny_line() {
+    let p = Poly::new(vec![0.0, -7.04435251176622e-75]);
+    assert_eq!(oracle(&p, -1e300, 1e300), vec![0.0], "the oracle");
+    assert_heuristic_honest(&p, -1e300, 1e300, 0.0, IsolationMethod::StamSturm);
+}
+
+/// Issue 11, coefficient fuzzer (seed 7, case 824): coefficients from 1.3 to 3.7e149 give
+/// two roots ±5.48e-29 (7.8e-34 apart in magnitude); the `f64` Sturm sequence's third
+/// remainder was all rounding noise, so the sequence ended at a degree-2 "gcd", read the
+/// pair as a double root and counted no root at all (`Sturm` answered "none"). A remainder
+/// coefficient dropped as noise now makes the sequence unusable for checked counts.
+#[test]
+fn sturm_noise_remainder_read_a_close_pair_as_a_double_root() {
+    let p = Poly::new(vec![
+        1.1160978129821933e93,
+        -1.4568917737127673e116,
+        -3.716676464761936e149,
+        -5.605073653240762,
+        -0.9573973032285017,
+        -1.3460158208387263,
+    ]);
+    assert_eq!(oracle(&p, -10.0, 10.0).len(), 2, "the oracle");
+    for method in HEURISTIC {
+        assert_heuristic_honest(&p, -10.0, 10.0, 0.0, method);
+    }
+}
+
+/// Issue 11, coefficient fuzzer (seed 7, case 2577): a sextic with a leading coefficient of
+/// −7.5e-48 and the others of order 1 has three roots in `(−10, 10]` (−0.863, −0.553,
+/// 0.399); its `f64` Sturm sequence dropped three noise coefficients of the fourth member
+/// (degree 3 → 1), the count then said one root, confirmed by opposite end signs, and
+/// `Sturm` answered only 0.399. The noise drop now makes the checked count refuse.
+#[test]
+fn sturm_degree_fell_by_noise_and_two_roots_were_lost() {
+    let p = Poly::new(vec![
+        0.17176510921851218,
+        0.0,
+        0.0,
+        -0.03717419317894066,
+        -4.668256275786602,
+        -5.0,
+        -7.50274539589483e-48,
+    ]);
+    assert_eq!(oracle(&p, -10.0, 10.0).len(), 3, "the oracle");
+    for method in HEURISTIC {
+        assert_heuristic_honest(&p, -10.0, 10.0, 1e-12, method);
+    }
+}
+
+/// Issue 11, coefficient fuzzer (seed 7, case 5919): `−1.67x⁴ − 8.67x − 5`, ordinary
+/// coefficients, roots −1.466 and −0.602; `StamSturm` answered "no root". With the `x³` and
+/// `x²` coefficients zero his recurrence's second member has an exactly zero leading
+/// coefficient, his shift loop runs, and the members are no longer remainders (his formula
+/// holds only when each degree drops by one). Such a sequence is now refused.
+#[test]
+fn stam_abnormal_recurrence_lost_both_roots_of_a_quartic() {
+    let p = Poly::new(vec![
+        -5.0,
+        -8.667592202745169,
+        0.0,
+        0.0,
+        -1.6684283143754541,
+    ]);
+    assert_eq!(oracle(&p, -10.0, 10.0).len(), 2, "the oracle");
+    let answered = assert_heuristic_honest(&p, -10.0, 10.0, 0.0, IsolationMethod::StamSturm);
+    assert_eq!(answered, 0, "his sequence is abnormal: every query refused");
+    // The normalised f64 Sturm sequence has no such restriction and answers.
+    assert_eq!(
+        assert_heuristic_honest(&p, -10.0, 10.0, 0.0, IsolationMethod::Sturm),
+        3
+    );
+}
+
+/// Issue 11, coefficient fuzzer (seed 13, smoke case 238): `−0.376x⁴ − 3.6e-121x² + 7.62x −
+/// 0.094` has roots 0.0123 and 2.72; `StamSturm` answered "no root": his third member's
+/// leading coefficient came from the 1e-121 term alone, 1e121 below the member's others, and
+/// the next remainder divided by it. A member whose leading coefficient is below the
+/// rounding of its others is now refused (`MAX_TAIL_OVER_LEAD`).
+#[test]
+fn stam_tiny_leading_coefficient_lost_two_roots() {
+    let p = Poly::new(vec![
+        -0.09358829032922689,
+        7.619559265930459,
+        -3.583339646940513e-121,
+        0.0,
+        -0.37641488843253157,
+    ]);
+    assert_eq!(oracle(&p, -10.0, 10.0).len(), 2, "the oracle");
+    assert_heuristic_honest(&p, -10.0, 10.0, 0.0, IsolationMethod::StamSturm);
+}
+
+/// Issue 11, coefficient fuzzer (seed 7, case 3507): a quartic whose `x³` coefficient is the
+/// subnormal −1.57e-308 has roots 0.78 and 5.40; `StamSturm` answered "no root" (his
+/// products of that coefficient lose all its digits). A subnormal coefficient in `P` or a
+/// member is now refused.
+#[test]
+fn stam_subnormal_coefficient_lost_two_roots() {
+    let p = Poly::new(vec![
+        -6.465628962388927,
+        8.294509939733349,
+        -1.6212608868901234e-15,
+        -1.5664041704453076e-308,
+        -0.04506436974540229,
+    ]);
+    assert_eq!(oracle(&p, -10.0, 10.0).len(), 2, "the oracle");
+    assert_heuristic_honest(&p, -10.0, 10.0, 0.0, IsolationMethod::StamSturm);
+}
+
+/// Issue 11, coefficient fuzzer (seed 7, case 16; the 12 failures of that run before the
+/// fix were all of this kind): on `(−1e300, 1e300]`, `−5.2e294x³ + f64::MAX·x² + 7.86x −
+/// 7.98` has its smallest root at −2.1e-154, and `StamSturm`'s smallest-root query answered
+/// 3.4e13 (its all-roots query disagreed with itself): his recurrence overflowed. A
+/// non-finite member value is now refused, and a root his search returns must be bracketed
+/// by certified signs with no certified sign change before it.
+#[test]
+fn stam_overflowed_recurrence_returned_a_root_past_the_first() {
+    let p = Poly::new(vec![
+        -7.977386041220265,
+        7.85866600727995,
+        1.7976931348623157e308,
+        -5.216203746752603e294,
+    ]);
+    assert!(oracle(&p, -1e300, 1e300)[0] < 0.0, "the oracle");
+    assert_heuristic_honest(&p, -1e300, 1e300, 0.0, IsolationMethod::StamSturm);
+}
+
+/// Issue 11, coefficient fuzzer (seed 7, cases 42 and 215): the heuristics' isolating
+/// intervals came from the counts alone, and an interval `(−10, 10]` with no root at all
+/// was returned for these (a wrong count of 1). An interval is now returned only when the
+/// stored polynomial's certified signs at its ends are opposite (or its upper end is an
+/// exact root).
+#[test]
+fn heuristic_isolation_returned_an_interval_without_a_root() {
+    let stam_case = Poly::new(vec![
+        9.558092184441254,
+        -2.2250738585072014e-308,
+        0.0,
+        -1.4377269326486832,
+        -8.77492491788602,
+        2.2250738585072014e-308,
+        6.788933550223835,
+        0.0,
+        -2.2250738585072014e-308,
+    ]);
+    let sturm_case = Poly::new(vec![
+        -8.542078299588166,
+        -2.877766714028267,
+        -1.7976931348623157e308,
+        7.410516648653655,
+    ]);
+    for p in [&stam_case, &sturm_case] {
+        assert!(oracle(p, -10.0, 10.0).is_empty(), "the oracle: no root");
+        for method in HEURISTIC {
+            assert_heuristic_honest(p, -10.0, 10.0, 0.0, method);
+        }
+    }
+}
+
+/// The checks of issue 11 leave ordinary inputs answered: five well-separated planted
+/// roots, every query of both heuristics, all three answers right.
+#[test]
+fn heuristics_still_answer_ordinary_planted_roots() {
+    let p = Poly::<f64>::from_roots(&[-3.0, -0.5, 0.25, 2.0, 7.0]);
+    for method in HEURISTIC {
+        assert_eq!(
+            assert_heuristic_honest(&p, -10.0, 10.0, 1e-12, method),
+            3,
+            "{method:?} answers every query"
+        );
+    }
+}
