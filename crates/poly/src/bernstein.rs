@@ -185,7 +185,7 @@ pub(crate) struct BernsteinIsolator<'p, S> {
     mag: f64,
     /// The caller's bound on every Bernstein coefficient, and every value, of the difference
     /// between the true polynomial and the stored one on this run's interval (0 for the
-    /// stored polynomial; see [`Slack`](crate::query::Slack)). Added to every error bound.
+    /// stored polynomial; see [`Slack`](crate::stored::Slack)). Added to every error bound.
     slack: f64,
     top: Node<S>,
 }

@@ -29,10 +29,10 @@ use crate::bernstein::{self, Bracket, Brackets, Stuck};
 use crate::eval_bound::{certified_sign, certified_sign_pair};
 use crate::exact_oracle::ExactOracle;
 use crate::multiprec::{Outcome, PieceIsolator, Tier, point_sign};
-use crate::query::Slack;
 use crate::root_interval::RootInterval;
 use crate::shifted::Shift;
 use crate::stats::RootStats;
+use crate::stored::Slack;
 use crate::univariate::Poly;
 
 /// Most Bernstein runs in one query (the first included) before the remaining pieces go

@@ -185,7 +185,7 @@ pub(crate) fn sign_if_certain(v: f64, err: f64) -> i8 {
 /// ([`rescaled_value`]), with the same guarantee relative to the largest `|cᵢ||x|^i`.
 ///
 /// `slack` widens every error bound by a caller's bound on `|p_true(x) − p(x)|` (0 for the
-/// stored polynomial itself; see [`Slack`](crate::query::Slack)): a sign certified with it is
+/// stored polynomial itself; see [`Slack`](crate::stored::Slack)): a sign certified with it is
 /// the sign of every polynomial within `slack` of the stored one at `x`.
 #[inline]
 pub(crate) fn certified_sign(c: &[f64], x: f64, slack: f64) -> i8 {

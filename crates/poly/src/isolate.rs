@@ -21,7 +21,6 @@ use crate::eval_bound::certified_sign;
 use crate::exact_oracle::{ExactOracle, SquareFreeSign};
 use crate::inclusion::{INCLUSION_MIN_DEGREE, Piece, real_pieces};
 use crate::multiprec::refine_wide;
-use crate::query::{Slack, Stored, with_scratch_poly};
 use crate::refine::{
     Refined, bisect_rational_to_f64, half_tol, probe_by, refine_bracket, refine_exact_f64,
 };
@@ -31,6 +30,7 @@ use crate::root_options::{IsolationMethod, RefineMethod, RootOptions, Tolerance}
 use crate::scalar::{Rat, rat_from_f64, rat_to_f64};
 use crate::stam::StamSturm;
 use crate::stats::RootStats;
+use crate::stored::{Slack, Stored, with_scratch_poly};
 use crate::sturm::{SturmSequence, check_finite, exact_zero_at};
 use crate::univariate::{
     Poly, QPoly, ROOT_BOUND_MARGIN, UNIT_ROUNDOFF, cauchy_bound_of, root_bound_of,

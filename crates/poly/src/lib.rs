@@ -82,6 +82,7 @@ mod scalar;
 mod shifted;
 mod stam;
 mod stats;
+mod stored;
 mod sturm;
 #[cfg(any(test, feature = "testutil"))]
 pub mod testutil;

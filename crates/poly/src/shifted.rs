@@ -22,11 +22,11 @@ use smallvec::SmallVec;
 use crate::bernstein::Bracket;
 use crate::double_double::{DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, taylor_shift_into, two_sum};
 use crate::multiprec::{Tier, point_sign, refine_wide};
-use crate::query::Stored;
 use crate::refine::{Refined, refine_bracket, refine_exact_offset};
 use crate::root_interval::RootInterval;
 use crate::root_options::{RefineMethod, Tolerance};
 use crate::stats::RootStats;
+use crate::stored::Stored;
 
 /// Highest degree shifted: the double-double shift costs `n²/2` products, and above this
 /// the per-node tiers of `multiprec.rs` are no dearer (the same bound as `dd_bernstein.rs`).
