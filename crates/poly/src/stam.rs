@@ -261,7 +261,7 @@ impl StamSturm {
     ///
     /// # Errors
     /// [`RootError::Unresolved`] with the interval the counts gave when the counts become
-    /// inconsistent or visibly fail ([`count_roots_checked`](Self::count_roots_checked)'s
+    /// inconsistent or visibly fail (the checked counts'
     /// overflow and underflow checks), the isolation loop hits its cap, or `P` never changed
     /// sign in the isolated interval (no value is returned that nothing supports).
     pub fn smallest_root(
