@@ -70,8 +70,9 @@ thread_local! {
     static BORROWED: Cell<Vec<f64>> = const { Cell::new(Vec::new()) };
 }
 
-/// Runs `f` on the polynomial with coefficients `coeffs` (trailing zeros trimmed), built in the per-thread buffer `buf` and handed back to it afterwards, so
-/// repeated calls allocate nothing. A nested call on the same buffer finds it taken and
+/// Runs `f` on the polynomial with coefficients `coeffs` (trailing zeros trimmed), built in
+/// the per-thread buffer `buf` and handed back to it afterwards, so repeated calls allocate
+/// nothing. A nested call on the same buffer finds it taken and
 /// allocates a fresh one: correct, only slower.
 pub(crate) fn with_scratch_poly<R>(
     buf: &'static LocalKey<Cell<Vec<f64>>>,
@@ -91,10 +92,10 @@ pub(crate) fn with_scratch_poly<R>(
 /// the [`Poly`] holding them when the query was made from one.
 ///
 /// Why: the certified `f64` path reads only the coefficients, so a query on a caller's
-/// buffer ([`PolyRef`](crate::PolyRef)) runs on the slice itself; only the rare paths that need a `Poly`
-/// (exact rationals, the Sturm heuristics) get one, from [`Stored::with_poly`]. The per-query
-/// copy into a per-thread `Poly` it replaces was ≈ 130 instructions of a torus ray's ≈ 1 100
-/// (`docs/speed.md`, "Where the teapots' slowdown came from").
+/// buffer ([`PolyRef`](crate::PolyRef)) runs on the slice itself; only the rare paths that
+/// need a `Poly` (exact rationals, the Sturm heuristics) get one, from [`Stored::with_poly`].
+/// The per-query copy into a per-thread `Poly` it replaces was ≈ 130 instructions of a torus
+/// ray's ≈ 1 100 (`docs/speed.md`, "Where the teapots' slowdown came from").
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Stored<'a> {
     coeffs: &'a [f64],
