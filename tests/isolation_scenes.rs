@@ -29,8 +29,9 @@ fn scenes() -> Vec<PathBuf> {
     files
 }
 
-/// The 12 × 9 depth map of `file` rendered with `isolation`.
-fn depths(file: &Path, isolation: IsolationMethod) -> Vec<f32> {
+/// The 12 × 9 depth map of `file` rendered with `isolation`, and how many root queries the
+/// method refused ([`poly::RootStats::unresolved`]).
+fn depths(file: &Path, isolation: IsolationMethod) -> (Vec<f32>, u64) {
     let scene = load(file).unwrap_or_else(|e| panic!("{e}"));
     let opts = RenderOptions {
         size: Some([12, 9]),
@@ -43,7 +44,8 @@ fn depths(file: &Path, isolation: IsolationMethod) -> Vec<f32> {
     };
     let (prepared, settings) = prepare_render(&scene, &opts).unwrap();
     let out = render(&prepared, &scene.camera, &settings, &|_| {});
-    out.film.depth.expect("asked for depth")
+    let refused = out.stats.roots.unresolved;
+    (out.film.depth.expect("asked for depth"), refused)
 }
 
 #[test]
@@ -67,7 +69,7 @@ fn every_isolation_method_renders_every_scene_as_the_exact_reference() {
         if file.file_stem().is_some_and(|s| s == "quartic-power64") {
             continue;
         }
-        let reference = depths(&file, IsolationMethod::Exact);
+        let (reference, _) = depths(&file, IsolationMethod::Exact);
         assert!(
             reference.iter().any(|d| d.is_finite()),
             "{}: something is hit",
@@ -78,16 +80,32 @@ fn every_isolation_method_renders_every_scene_as_the_exact_reference() {
             IsolationMethod::Sturm,
             IsolationMethod::StamSturm,
         ] {
-            let got = depths(&file, method);
+            let (got, refused) = depths(&file, method);
+            let mut differing = Vec::new();
             for (i, (g, r)) in got.iter().zip(&reference).enumerate() {
                 let same = (g.is_infinite() && r.is_infinite())
                     || f64::from((g - r).abs()) <= DEPTH_REL * f64::from(r.abs()).max(1.0);
-                assert!(
-                    same,
-                    "{} {method:?}: pixel {i}: depth {g} vs exact {r}",
-                    file.display()
-                );
+                if !same {
+                    differing.push(format!("pixel {i}: depth {g} vs exact {r}"));
+                }
             }
+            // The certified method must match everywhere. A heuristic may refuse a query it
+            // cannot count (`RootError::Unresolved`, counted in the statistics; issue 11: the
+            // Sturm methods now refuse where rounding decides a sign, e.g. a degree-16 sheet
+            // ray of `torus-sheets16.scene`), and such a ray is a miss; but every differing
+            // pixel must be covered by a refusal, so a silent wrong answer still fails.
+            let allowed = if method == IsolationMethod::Bernstein {
+                0
+            } else {
+                refused
+            };
+            assert!(
+                differing.len() as u64 <= allowed,
+                "{} {method:?}: {} pixels differ from the exact reference, {refused} queries \
+                 refused: {differing:?}",
+                file.display(),
+                differing.len()
+            );
         }
         checked += 1;
     }
