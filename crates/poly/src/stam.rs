@@ -18,7 +18,7 @@
 
 use crate::eval_bound::horner_bounded_from_top;
 use crate::root_error::RootError;
-use crate::sturm::{CHECKED_STACK, changes_with_uncertain, v0_sign_at_zero_value};
+use crate::sturm::{CheckedSigns, changes_with_uncertain, v0_sign_at_zero_value};
 use crate::univariate::Poly;
 
 /// Most bisections in [`StamSturm::smallest_root`]'s isolation loop (the original has none):
@@ -204,14 +204,7 @@ impl StamSturm {
             return None;
         }
         // Signs with 2 for "uncertain", as in the f64 Sturm sequence's checked count.
-        let mut stack = [0i8; CHECKED_STACK];
-        let mut heap = Vec::new();
-        let signs: &mut [i8] = if self.members.len() <= CHECKED_STACK {
-            &mut stack[..self.members.len()]
-        } else {
-            heap.resize(self.members.len(), 0);
-            &mut heap
-        };
+        let mut signs = CheckedSigns::from_elem(0, self.members.len());
         let mut f = 0.0;
         for ((i, m), sign) in self.members.iter().enumerate().zip(signs.iter_mut()) {
             // His value `V(i, x)` (the same Horner steps), with the rounding bound of
@@ -248,7 +241,7 @@ impl StamSturm {
             }
             f = g;
         }
-        changes_with_uncertain(signs)
+        changes_with_uncertain(&signs)
     }
 
     /// `IntAlgSurf`'s search: halve `[t1, t2]` (keeping the left half when it holds a root

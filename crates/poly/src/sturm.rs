@@ -17,6 +17,7 @@
 
 use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
+use smallvec::SmallVec;
 
 use crate::eval_bound::{certified_sign, horner_bounded};
 use crate::int_poly::IntPoly;
@@ -314,14 +315,7 @@ impl SturmSequence<f64> {
             return Some(self.sign_changes_at(x));
         }
         // Signs with 2 for "uncertain"; V₀'s is certified.
-        let mut stack = [0i8; CHECKED_STACK];
-        let mut heap = Vec::new();
-        let signs: &mut [i8] = if self.polys.len() <= CHECKED_STACK {
-            &mut stack[..self.polys.len()]
-        } else {
-            heap.resize(self.polys.len(), 0);
-            &mut heap
-        };
+        let mut signs = CheckedSigns::from_elem(0, self.polys.len());
         for (k, (v, e)) in self.polys.iter().zip(&self.errs).enumerate() {
             let (value, err) = horner_bounded(v.coeffs(), x);
             if !value.is_finite() || !err.is_finite() {
@@ -347,7 +341,7 @@ impl SturmSequence<f64> {
                 0
             };
         }
-        changes_with_uncertain(signs)
+        changes_with_uncertain(&signs)
     }
 }
 
@@ -396,9 +390,10 @@ pub(crate) fn exact_zero_at(c: &[f64], x: f64) -> bool {
     q.eval(&xq).is_zero()
 }
 
-/// Members whose checked signs are kept on the stack (longer sequences allocate): 64 covers
-/// every degree below 64, all the renderer and the stability suite ask.
-pub(crate) const CHECKED_STACK: usize = 64;
+/// The checked signs of a sequence's members at one point (2 for "uncertain"), on the stack
+/// up to 64 members (longer sequences allocate): 64 covers every degree below 64, all the
+/// renderer and the stability suite ask.
+pub(crate) type CheckedSigns = SmallVec<[i8; 64]>;
 
 /// Scales `p` and its coefficient errors `err` (empty: none yet, filled with zeros) by the
 /// power of two `2^-e` that brings the largest coefficient magnitude into `[1, 2)`: a
