@@ -83,6 +83,10 @@ pub struct CertificationStats {
     pub dd_restrictions: u64,
     /// Of those, rays the double-double restriction decided.
     pub dd_decided: u64,
+    /// Of those it did not, rays above `EXACT_RESTRICTION_MAX_DEGREE` it decided at the
+    /// reduced tolerance `REDUCED_ROOT_X_TOL_REL` of the implicit-surface module (certified,
+    /// to about 10⁻⁷ of the object's size instead of 10⁻¹⁰).
+    pub reduced_precision: u64,
     /// Rays restricted again in exact rational arithmetic (then rounded to `f64` with a
     /// slack of the polynomial's own scale, which decides most), up to the degree
     /// `EXACT_RESTRICTION_MAX_DEGREE` of the implicit-surface module.
@@ -143,6 +147,7 @@ impl TraceStats {
         self.singular_normals += o.singular_normals;
         self.surface_certification.dd_restrictions += o.surface_certification.dd_restrictions;
         self.surface_certification.dd_decided += o.surface_certification.dd_decided;
+        self.surface_certification.reduced_precision += o.surface_certification.reduced_precision;
         self.surface_certification.exact_restrictions += o.surface_certification.exact_restrictions;
         self.surface_certification.exact_isolations += o.surface_certification.exact_isolations;
         self.surface_certification.undecided_rays += o.surface_certification.undecided_rays;
@@ -439,6 +444,11 @@ impl fmt::Display for StatsReport<'_> {
             f,
             "      decided there                  {:>12}",
             c.dd_decided
+        )?;
+        writeln!(
+            f,
+            "      decided at reduced precision   {:>12}",
+            c.reduced_precision
         )?;
         writeln!(
             f,

@@ -42,8 +42,8 @@ pub use bezier_mesh::{
 pub use bezier_patch::{BezierPatch, POWER_ZERO_REL};
 pub use cone::{Cone, ConeSide};
 pub use implicit::{
-    ENTRY_MARGIN_REL, EXACT_RESTRICTION_MAX_DEGREE, Implicit, ImplicitFn, ROOT_X_TOL_REL,
-    SINGULAR_P_ERR_REL,
+    ENTRY_MARGIN_REL, EXACT_RESTRICTION_MAX_DEGREE, Implicit, ImplicitFn, REDUCED_ROOT_X_TOL_REL,
+    ROOT_X_TOL_REL, SINGULAR_P_ERR_REL,
 };
 pub use mesh::SmoothPolygon;
 pub use plane::Plane;
