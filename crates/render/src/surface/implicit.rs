@@ -30,9 +30,10 @@ pub const ROOT_X_TOL_REL: f64 = 1.0 / (1u64 << 33) as f64;
 /// below a pixel whenever the object spans fewer than 10⁴ pixels; it is a certified answer,
 /// where the alternative was one for the rounded polynomial (counted as undecided), and
 /// `render --stats` counts it ("decided at reduced precision"). On the degree-20 sheets seen
-/// from 9 430 units it decides 308 of 311 such rays at 48², and 2⁻²⁰ decides all
-/// (`docs/speed.md`, "High-degree surfaces", eleventh session); 2⁻²³ keeps it closer to the
-/// requested tolerance at the cost of those few.
+/// from 9 430 units it decides 310 of 311 such rays at 48² (`docs/speed.md`, "High-degree
+/// surfaces: the slack's evaluation and the undecided rays"): most are limited only in the
+/// refinement of a certified bracket, which a tolerance 2¹⁰ times wider ends; the one left
+/// is limited in the existence of a root, which no tolerance settles.
 pub const REDUCED_ROOT_X_TOL_REL: f64 = 1.0 / (1u64 << 23) as f64;
 
 /// The degree from which a bounded surface, too, is restricted at the centred expansion point
@@ -452,7 +453,8 @@ struct RestrictionSlack {
 /// renderer's depth tolerance is finer than the rounded restriction can certify: 9 s for
 /// 100 × 100 pixels, minutes at 840². 12 keeps the degree-12 powers of the tests and every
 /// classic scene (Barth, degree 6: 409 rays of 40 318 at 200², now all decided by the
-/// double-double tier). Above this degree such a ray is counted as undecided instead
+/// double-double tier). Above this degree such a ray gets a last try at
+/// [`REDUCED_ROOT_X_TOL_REL`] instead, and one that even that leaves is counted as undecided
 /// (`TraceStats::surface_certification`) and answered for the rounded restriction.
 pub const EXACT_RESTRICTION_MAX_DEGREE: u32 = 12;
 
