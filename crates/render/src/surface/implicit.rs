@@ -183,23 +183,44 @@ impl<F: ImplicitFn> Implicit<F> {
             (a, b) => a.or(b),
         };
         let diagonal = bounds.map_or(0.0, |b| b.diagonal());
-        let weights = DVec3::from_array(f.poly().partial_degrees().map(f64::from));
-        let rounding_steps = f.restriction_rounding_steps();
-        Implicit {
-            slack_rel: slack_rel(rounding_steps, degree),
-            underflow_weight: f.restriction_underflow_weight(),
-            dd_rel: dd_slack_rel(f.poly().restriction_rounding_steps(), degree),
-            dd_underflow_weight: 4.0 * f.poly().restriction_underflow_weight(),
-            ray_degree: f.poly().restriction_degree_bounds(),
+        let mut implicit = Implicit {
+            weights: DVec3::ZERO,
+            rounding_steps: 0,
+            slack_rel: 0.0,
+            underflow_weight: 0.0,
+            ray_degree: [0; 8],
+            dd_rel: 0.0,
+            dd_underflow_weight: 0.0,
             f,
-            weights,
-            rounding_steps,
             degree,
             diagonal,
             bounds,
             clip_sphere: None,
             roots: RootMethods::default(),
+        };
+        if degree < 3 {
+            // Degrees 1–2 keep their closed forms: never certified against the restriction
+            // ([`Implicit::certifies`]) nor restricted at a centred point, so the data of both
+            // stays zero. Computing it was ≈ 1.2 K instructions a sphere, a third of the
+            // 66 430-sphere scene's surface set-up (`docs/speed.md`, eleventh session).
+            return implicit;
         }
+        let (f, poly) = (&implicit.f, implicit.f.poly());
+        let rounding_steps = f.restriction_rounding_steps();
+        let weights = DVec3::from_array(poly.partial_degrees().map(f64::from));
+        let slack = slack_rel(rounding_steps, degree);
+        let underflow_weight = f.restriction_underflow_weight();
+        let dd_rel = dd_slack_rel(poly.restriction_rounding_steps(), degree);
+        let dd_underflow_weight = 4.0 * poly.restriction_underflow_weight();
+        let ray_degree = poly.restriction_degree_bounds();
+        implicit.weights = weights;
+        implicit.rounding_steps = rounding_steps;
+        implicit.slack_rel = slack;
+        implicit.underflow_weight = underflow_weight;
+        implicit.dd_rel = dd_rel;
+        implicit.dd_underflow_weight = dd_underflow_weight;
+        implicit.ray_degree = ray_degree;
+        implicit
     }
 
     /// Finds roots with `roots` instead of the default methods.
@@ -1399,6 +1420,44 @@ mod tests {
         }
         assert!(reduced >= 10, "decided at reduced precision: {reduced}");
         assert!(undecided <= 1, "left undecided: {undecided}");
+    }
+
+    /// `Implicit::new` leaves the certification data of degrees 1–2 at zero (it was a third of
+    /// the 66 430-sphere scene's surface set-up): no query of such a surface may read it. It is
+    /// read only by certified queries and centred restrictions, neither of which a degree-1 or
+    /// degree-2 surface takes under any root method; a change that let one would make this
+    /// test fail before it made hits wrong.
+    #[test]
+    fn degree_one_and_two_surfaces_never_read_the_certification_data() {
+        let (x, y, z) = (Poly3::x(), Poly3::y(), Poly3::z());
+        let paraboloid = &(&(&x * &x) + &(&y * &y)) - &z;
+        for isolation in [
+            IsolationMethod::Bernstein,
+            IsolationMethod::Exact,
+            IsolationMethod::Sturm,
+            IsolationMethod::StamSturm,
+        ] {
+            let roots = RootMethods {
+                isolation,
+                ..RootMethods::default()
+            };
+            let sphere =
+                Implicit::new(Sphere::new(DVec3::ZERO, 1.0), None).with_root_methods(roots);
+            let plane =
+                Implicit::new(Plane::new(DVec3::ZERO, DVec3::Z), None).with_root_methods(roots);
+            let quadric =
+                Implicit::new(Algebraic::new(paraboloid.clone()), None).with_root_methods(roots);
+            assert!(!sphere.certifies() && !plane.certifies() && !quadric.certifies());
+            assert_eq!(sphere.slack_rel, 0.0, "left at zero");
+            assert!(
+                [sphere.degree, plane.degree, quadric.degree]
+                    .iter()
+                    .all(|&d| d < 3)
+            );
+        }
+        // A cubic gets its data.
+        let cubic = Implicit::new(Algebraic::new(&(&x * &paraboloid) - &y), None);
+        assert!(cubic.certifies() && cubic.slack_rel > 0.0 && cubic.ray_degree[7] == 3);
     }
 
     #[test]
