@@ -186,6 +186,9 @@ struct Scratch {
     z: Vec<C>,
     /// Whether `zᵢ` has stopped moving (converged or at the noise floor).
     done: Vec<bool>,
+    /// An upper bound on `|p(zᵢ)|` that the polish computed at the final `zᵢ` (rigorous, as
+    /// [`abs_p_upper`]'s), or NaN: the certificate uses it instead of evaluating again.
+    p_bound: Vec<f64>,
     /// Upper bounds on the inclusion radii.
     radius: Vec<f64>,
     /// Real shadows `[lo, hi]` of the discs meeting the real axis (NaN ends: none).
@@ -202,6 +205,8 @@ struct Scratch {
     pieces: Vec<Piece>,
     /// Union–find parents of the discs' clusters (components of discs not certainly apart).
     parent: Vec<usize>,
+    /// The real centres of the isolated discs, sorted ([`decide`]'s implied signs).
+    isolated_centres: Vec<f64>,
     /// Per cluster (indexed by its root in `parent`): not tried yet (`None`), or the exact
     /// multiple root certified for it (`Some(Some(r))`) or not (`Some(None)`).
     cluster: Vec<Option<Option<f64>>>,
@@ -220,6 +225,7 @@ impl Scratch {
         let m = n.max(SCRATCH_MIN_DEGREE) + 1;
         self.z.reserve(m.saturating_sub(self.z.len()));
         self.done.reserve(m.saturating_sub(self.done.len()));
+        self.p_bound.reserve(m.saturating_sub(self.p_bound.len()));
         self.radius.reserve(m.saturating_sub(self.radius.len()));
         self.shadow.reserve(m.saturating_sub(self.shadow.len()));
         self.isolated.reserve(m.saturating_sub(self.isolated.len()));
@@ -230,6 +236,8 @@ impl Scratch {
         self.pieces
             .reserve((3 * m).saturating_sub(self.pieces.len()));
         self.parent.reserve(m.saturating_sub(self.parent.len()));
+        self.isolated_centres
+            .reserve(m.saturating_sub(self.isolated_centres.len()));
         self.cluster.reserve(m.saturating_sub(self.cluster.len()));
         self.hull.reserve(m.saturating_sub(self.hull.len()));
         self.shifted.reserve(m.saturating_sub(self.shifted.len()));
@@ -491,8 +499,7 @@ fn abs_p_upper_plain<const RESCALED: bool>(c: &[f64], z: C) -> f64 {
         // product is exact in units of η.
         debug_assert!(!RESCALED || z.re.abs() < 1.0, "rescaled point");
         let coeff_err = coeff_eta * ETA * c.len() as f64;
-        // Two additions (one when coeff_err = 0), each within (1 + u): (1 + 2ε) covers both.
-        return (v.abs() + err + coeff_err) * (1.0 + 2.0 * EPS);
+        return real_abs_upper(v, err + coeff_err);
     }
     let az = z.abs() * (1.0 + 2.0 * EPS);
     let (mut v, mut s, mut w) = (C::default(), 0.0f64, 0.0f64);
@@ -504,6 +511,16 @@ fn abs_p_upper_plain<const RESCALED: bool>(c: &[f64], z: C) -> f64 {
     }
     let err = gamma_ratio(6 * c.len()) * s * (1.0 + 8.0 * EPS) + (8.0 + coeff_eta) * ETA * w;
     (v.re.abs() + v.im.abs() + err) * (1.0 + 4.0 * EPS)
+}
+
+/// `|v| + err` rounded up: an upper bound on `|p(x)|` from a computed value `v` with a
+/// rigorous bound `err` on its error (the one home of this rounding for [`abs_p_upper`] and
+/// the polish's cached bounds, [`polish_real`]). The addition (two when `err` is itself a
+/// sum of two terms, as for rescaled coefficients) rounds within `(1 + u)` each: `(1 + 2ε)`
+/// covers both.
+#[inline(always)]
+fn real_abs_upper(v: f64, err: f64) -> f64 {
+    (v.abs() + err) * (1.0 + 2.0 * f64::EPSILON)
 }
 
 /// `γ(k)/(1 − γ(k))` rounded up, `γ(k) = k·u/(1 − k·u)` (Higham §3.1), infinite when
@@ -594,8 +611,16 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
 /// Aberth's sum, not Newton's step alone, keeps two approximations from settling on the
 /// same root; its real part is the sum over the conjugate-symmetrised set, so a real
 /// approximation stays real.
+///
+/// Where the last compensated evaluation of an approximation was at its final value (it
+/// stopped there: within its error bound, or a step that did not move it), the rigorous
+/// bound `|v| + err` on `|p(xᵢ)|` is kept in `s.p_bound` for the certificate, which would
+/// otherwise evaluate `p` again at the same point (the compensated scheme, for values that
+/// small).
 fn polish_real(c: &[f64], s: &mut Scratch) {
     let n = s.z.len();
+    s.p_bound.clear();
+    s.p_bound.resize(n, f64::NAN);
     for i in 0..n {
         s.done[i] = s.z[i].im != 0.0;
     }
@@ -610,9 +635,11 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
             let (v, err, d) = comp_horner_bounded_and_derivative(c, x);
             if v.abs() <= err && err.is_finite() {
                 s.done[i] = true;
+                s.p_bound[i] = real_abs_upper(v, err);
                 continue;
             }
-            let (v, err, d) = if err.is_finite() && d.is_finite() {
+            let plain = err.is_finite() && d.is_finite();
+            let (v, err, d) = if plain {
                 (v, err, d)
             } else {
                 polish_values_rescaled(c, x)
@@ -624,15 +651,18 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
             let newton = v / d;
             let sum = aberth_sum(C::new(x, 0.0), &s.z[..i], &s.z[i + 1..], far).re;
             let next = x - newton / (1.0 - newton * sum);
-            if !next.is_finite() {
+            if !next.is_finite() || next == x {
+                // Stopped at x, where (v, err) was just computed (and is p's own, unless it
+                // came from the rescaled polynomial).
                 s.done[i] = true;
+                if plain {
+                    s.p_bound[i] = real_abs_upper(v, err);
+                }
                 continue;
             }
             s.z[i] = C::new(next, 0.0);
             far |= next.abs() > FAR_COORDINATE;
-            if next == x {
-                s.done[i] = true;
-            } else {
+            {
                 moving = true;
             }
         }
@@ -801,7 +831,11 @@ fn certify(c: &[f64], s: &mut Scratch) -> bool {
     let margin = 1.0 + (4 * n + 16) as f64 * f64::EPSILON;
     for i in 0..n {
         let zi = s.z[i];
-        let (p_up, p_scale) = abs_p_upper(c, zi);
+        // The polish's bound where it stopped at zᵢ, else a fresh one.
+        let (p_up, p_scale) = match s.p_bound[i] {
+            b if b.is_finite() => (b, 0),
+            _ => abs_p_upper(c, zi),
+        };
         if !p_up.is_finite() {
             return false;
         }
@@ -908,6 +942,14 @@ fn decide(c: &[f64], lo: f64, hi: f64, s: &mut Scratch) {
         every_real_root_isolated &= iso || !on_axis;
         s.isolated.push(iso);
     }
+    // The implied signs below count the isolated real centres right of each disc: from
+    // the sorted centres, `O(log n)` per disc instead of a pass over all of them.
+    s.isolated_centres.clear();
+    if every_real_root_isolated {
+        s.isolated_centres
+            .extend((0..n).filter(|&j| s.isolated[j]).map(|j| s.z[j].re));
+        s.isolated_centres.sort_unstable_by(f64::total_cmp);
+    }
     for i in 0..n {
         let (a, b) = s.shadow[i];
         // No real point of this disc in [lo, hi] (NaN: none at all).
@@ -918,11 +960,11 @@ fn decide(c: &[f64], lo: f64, hi: f64, s: &mut Scratch) {
         // per real-centred disc, so the sign right of a shadow is `sign(aₙ)` times −1 per
         // real disc further right (the shadows are disjoint): no evaluation near the root.
         let right_sign = every_real_root_isolated.then(|| {
-            let right = (0..n)
-                .filter(|&j| s.isolated[j] && s.z[j].re > s.z[i].re)
-                .count();
+            let centre = s.z[i].re;
+            let right =
+                s.isolated_centres.len() - s.isolated_centres.partition_point(|&x| x <= centre);
             let lead = if c[n] > 0.0 { 1 } else { -1 };
-            if right % 2 == 0 { lead } else { -lead }
+            if right.is_multiple_of(2) { lead } else { -lead }
         });
         if decide_shadow(c, lo, hi, i, right_sign, s) {
             continue;
@@ -1273,6 +1315,63 @@ mod tests {
         assert!(
             checked >= 32,
             "Wilkinson's 20 roots and T₁₂'s 12 at least: {checked}"
+        );
+    }
+
+    /// The certificate takes `|p(zᵢ)|` from the polish where it stopped at `zᵢ`
+    /// (`Scratch::p_bound`): each such bound must be the compensated bound at the final,
+    /// real `zᵢ` (not one computed before a last step, which the exact value alone would
+    /// rarely catch: a step towards the root makes `|p|` smaller) and hold for the exact value
+    /// of the stored polynomial there, and the path must be taken for most real roots.
+    #[test]
+    fn polish_bounds_kept_for_the_certificate_hold_exactly() {
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let mut polys = vec![wilkinson(20).to_f64(), chebyshev(12).to_f64(), kac(40, 1)];
+        for degree in [8, 14, 20] {
+            let roots: Vec<Rat> = (0..degree)
+                .map(|_| {
+                    let m = rng.gen_range(2..=1024i64);
+                    rat(rng.gen_range(0..=m), m)
+                })
+                .collect();
+            polys.push(planted(&roots).to_f64());
+        }
+        let (mut kept, mut real) = (0, 0);
+        for p in &polys {
+            let c = p.coeffs();
+            let exact = p.to_rat().expect("finite coefficients");
+            let mut s = Scratch::default();
+            s.reserve(p.degree());
+            assert!(approximate(c, &mut s), "degree {}", p.degree());
+            real += s.z.iter().filter(|z| z.im == 0.0).count();
+            for (z, &b) in s.z.iter().zip(&s.p_bound) {
+                if b.is_nan() {
+                    continue;
+                }
+                kept += 1;
+                assert_eq!(z.im, 0.0, "a bound kept for a non-real centre {z:?}");
+                // Computed at the final point, not before a last step.
+                let (v, err) = comp_horner_bounded(c, z.re);
+                assert_eq!(
+                    b,
+                    real_abs_upper(v, err),
+                    "degree {}: at {:e}",
+                    p.degree(),
+                    z.re
+                );
+                let v = exact.eval(&rat_from_f64(z.re).expect("finite"));
+                let v = if v < Rat::default() { -v } else { v };
+                assert!(
+                    v <= rat_from_f64(b).expect("finite"),
+                    "degree {}: |p({:e})| above the kept bound {b:e}",
+                    p.degree(),
+                    z.re
+                );
+            }
+        }
+        assert!(
+            2 * kept >= real,
+            "bounds kept for {kept} of {real} real approximations"
         );
     }
 
