@@ -662,9 +662,7 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
             }
             s.z[i] = C::new(next, 0.0);
             far |= next.abs() > FAR_COORDINATE;
-            {
-                moving = true;
-            }
+            moving = true;
         }
         if !moving {
             break;
