@@ -479,14 +479,6 @@ struct RestrictionSlack {
 /// (`TraceStats::surface_certification`) and answered for the rounded restriction.
 pub const EXACT_RESTRICTION_MAX_DEGREE: u32 = 12;
 
-/// The tolerances [`Implicit::dd_tier`] tries: the query's own, then, when given, the
-/// reduced one of [`REDUCED_ROOT_X_TOL_REL`].
-#[derive(Clone, Copy)]
-struct DdOptions<'a> {
-    full: &'a RootOptions,
-    reduced: Option<&'a RootOptions>,
-}
-
 /// What [`Implicit::dd_tier`] made of a slack-limited ray.
 enum DdTier {
     /// Certified: the smallest root in the range, or none.
@@ -701,11 +693,9 @@ impl<F: ImplicitFn> Implicit<F> {
                         self.roots
                             .options(x_tol * (REDUCED_ROOT_X_TOL_REL / ROOT_X_TOL_REL))
                     });
-                let tiers = DdOptions {
-                    full: &opts,
-                    reduced: reduced.as_ref(),
-                };
-                let dd_kept = match self.dd_tier(ws, ray, t0, (lo, hi), tiers, centred) {
+                let both = [&opts, reduced.as_ref().unwrap_or(&opts)];
+                let tries = &both[..1 + usize::from(reduced.is_some())];
+                let dd_kept = match self.dd_tier(ws, ray, t0, (lo, hi), tries, centred) {
                     DdTier::Decided(s) => return s.map(|s| (t0 + s, o + ray.dir * s)),
                     DdTier::Undecided { kept } => kept,
                 };
@@ -746,8 +736,8 @@ impl<F: ImplicitFn> Implicit<F> {
     /// arithmetic from the restriction point `t0·dir + origin` in double-double, rounded to
     /// `f64`, and certified by [`Implicit::rounded_tier`] with the double-double rounding,
     /// `(γ_dd(K) + N·u_dd)·G(Y)` and four times the underflow term, as its extra slack
-    /// (`paper-notes/implicit-surfaces.md` §6); to `opts.full`'s tolerance, else to
-    /// `opts.reduced`'s when given ([`REDUCED_ROOT_X_TOL_REL`]). [`DdTier::Undecided`] when it
+    /// (`paper-notes/implicit-surfaces.md` §6), at each tolerance of `tries` in turn (the
+    /// query's own, then [`REDUCED_ROOT_X_TOL_REL`]'s when given). [`DdTier::Undecided`] when it
     /// decides nothing or the shape has no double-double restriction.
     fn dd_tier(
         &self,
@@ -755,7 +745,7 @@ impl<F: ImplicitFn> Implicit<F> {
         ray: &Ray,
         t0: f64,
         range: (f64, f64),
-        opts: DdOptions<'_>,
+        tries: &[&RootOptions],
         centred: bool,
     ) -> DdTier {
         let o: [Dd; 3] = std::array::from_fn(|k| Dd::product(t0, ray.dir[k]) + ray.origin[k]);
@@ -784,15 +774,16 @@ impl<F: ImplicitFn> Implicit<F> {
         };
         let poly3 = self.f.poly();
         let extra = |r: f64| restriction_slack(|y| poly3.eval_abs_upper(y), &data, r);
-        if let Some(answer) = self.rounded_tier(ws, &extra, range, opts.full, centred) {
-            ws.stats.surface_certification.dd_decided += 1;
-            return DdTier::Decided(answer);
-        }
-        if let Some(reduced) = opts.reduced
-            && let Some(answer) = self.rounded_tier(ws, &extra, range, reduced, centred)
-        {
-            ws.stats.surface_certification.reduced_precision += 1;
-            return DdTier::Decided(answer);
+        match self.rounded_tier(ws, &extra, range, tries, centred) {
+            Some((0, answer)) => {
+                ws.stats.surface_certification.dd_decided += 1;
+                return DdTier::Decided(answer);
+            }
+            Some((_, answer)) => {
+                ws.stats.surface_certification.reduced_precision += 1;
+                return DdTier::Decided(answer);
+            }
+            None => {}
         }
         DdTier::Undecided { kept: true }
     }
@@ -810,22 +801,24 @@ impl<F: ImplicitFn> Implicit<F> {
         ws.coeffs.clear();
         ws.coeffs
             .extend(exact.coeffs().iter().map(poly::rat_to_f64));
-        self.rounded_tier(ws, &|_| 0.0, range, opts, centred)
+        self.rounded_tier(ws, &|_| 0.0, range, &[opts], centred)
+            .map(|(_, answer)| answer)
     }
 
     /// The coefficients in `ws.coeffs`, each the nearest `f64` to a restriction known to
     /// within `extra(R)` (`Σₘ|Δcₘ|Rᵐ`), certified with the slack of their own rounding —
     /// `2u·Σ|ĉₘ|Rᵐ`, the polynomial's own scale, not `F_abs`'s — plus `extra`, by the same
-    /// query. `None` when that slack decides nothing; otherwise the answer (`Some(None)`: no
-    /// root).
+    /// query, at each tolerance of `tries` in turn (the slack and the range built once).
+    /// `None` when that slack decides nothing at any of them; otherwise the index of the try
+    /// that decided and its answer (`None`: no root).
     fn rounded_tier(
         &self,
         ws: &mut Workspace,
         extra: &dyn Fn(f64) -> f64,
         (lo, hi): (f64, f64),
-        opts: &RootOptions,
+        tries: &[&RootOptions],
         centred: bool,
-    ) -> Option<Option<f64>> {
+    ) -> Option<(usize, Option<f64>)> {
         // A top coefficient below the subnormals rounds to 0: the degree drops, and with it
         // the blossom argument of the slack (see `dropped_degree`).
         if ws.coeffs.iter().any(|c| !c.is_finite()) || ws.coeffs.last() == Some(&0.0) {
@@ -849,16 +842,18 @@ impl<F: ImplicitFn> Implicit<F> {
             let t = PolyRef::new(&ws.coeffs).root_radius_within(&slack)?;
             (lo, hi) = (lo.max(-t), hi.min(t));
         }
-        let answer = if centred {
-            smallest_root_split(ws, lo, hi, opts, Some(&slack))
-        } else {
-            certified_smallest(ws, lo, hi, opts, Some(&slack))
-        };
-        match answer {
-            Ok(s) => Some(s),
-            Err(RootError::SlackLimited { .. }) => None,
-            Err(_) => Some(None),
-        }
+        tries.iter().enumerate().find_map(|(i, opts)| {
+            let answer = if centred {
+                smallest_root_split(ws, lo, hi, opts, Some(&slack))
+            } else {
+                certified_smallest(ws, lo, hi, opts, Some(&slack))
+            };
+            match answer {
+                Ok(s) => Some((i, s)),
+                Err(RootError::SlackLimited { .. }) => None,
+                Err(_) => Some((i, None)),
+            }
+        })
     }
 }
 
