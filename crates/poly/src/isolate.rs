@@ -494,10 +494,7 @@ impl Poly<f64> {
     ) -> Result<(), RootError> {
         let before = out.len();
         let found = stats.record_all(self.degree(), |s| {
-            if slack.is_some() && !slack_applies(a, b, opts) {
-                validate(self.coeffs(), a, b, opts)?;
-                return Err(RootError::SlackLimited { lo: a, hi: b });
-            }
+            refuse_inapplicable_slack(self.coeffs(), a, b, opts, slack)?;
             self.real_roots_push(a, b, opts, slack, s, out)?;
             Ok(out.len() - before)
         });
@@ -841,6 +838,22 @@ fn slack_applies(lo: f64, hi: f64, opts: &RootOptions) -> bool {
     opts.isolation == IsolationMethod::Bernstein && lo.is_finite() && hi.is_finite()
 }
 
+/// The refusal [`slack_applies`] describes, for the smallest-root and all-roots queries alike:
+/// `Err` for a query with a value slack that cannot apply to it, after the usual validation.
+fn refuse_inapplicable_slack(
+    c: &[f64],
+    lo: f64,
+    hi: f64,
+    opts: &RootOptions,
+    slack: Slack<'_>,
+) -> Result<(), RootError> {
+    if slack.is_some() && !slack_applies(lo, hi, opts) {
+        validate(c, lo, hi, opts)?;
+        return Err(RootError::SlackLimited { lo, hi });
+    }
+    Ok(())
+}
+
 /// The smallest-root query on the stored polynomial `p`, owned or borrowed: counts it in
 /// `stats` and runs [`smallest_inner`]. The one implementation behind
 /// [`Poly::try_smallest_root`] and [`RootQuery::smallest`](crate::RootQuery::smallest).
@@ -870,13 +883,7 @@ fn smallest_inner(
     slack: Slack<'_>,
     stats: &mut RootStats,
 ) -> Result<Option<f64>, RootError> {
-    if slack.is_some() && !slack_applies(t_min, t_max, opts) {
-        validate(p.coeffs(), t_min, t_max, opts)?;
-        return Err(RootError::SlackLimited {
-            lo: t_min,
-            hi: t_max,
-        });
-    }
+    refuse_inapplicable_slack(p.coeffs(), t_min, t_max, opts, slack)?;
     // Evaluated only for degrees 1 and 2 (every torus and Barth query passes here). With
     // a slack the closed forms do not apply (they certify against the stored polynomial).
     let closed_form = |opts: &RootOptions| {
