@@ -285,6 +285,12 @@ fn slowest_cell_of_band(
 /// The object whose nearest-hit query on the centre camera ray of `cell` takes longest, each
 /// object queried alone with fresh counters (one ray per object, after the render).
 ///
+/// Only the objects the scene's aggregate offers that ray are queried (those whose boxes it
+/// crosses, and the unbounded ones): any other is rejected by its box before its surface is
+/// asked anything. Querying every object, with two clock reads each, cost the 66 430-sphere
+/// SPD sphereflake 40 M instructions at any image size (`docs/speed.md`, issue 12, twelfth
+/// session).
+///
 /// One workspace serves every object, its counters reset before each: a fresh workspace per
 /// object zeroed the Bézier solver's buffers each time, which cost more than the whole render
 /// of the 66 430-sphere SPD scene at 128² (`docs/speed.md`, "BVH traversal, third pass").
@@ -298,20 +304,27 @@ fn slowest_object(
     let ray = camera.ray(x + w / 2.0, y + h / 2.0);
     let mut slowest: Option<SlowObject> = None;
     let mut ws = Workspace::new();
-    for (index, surface) in scene.surfaces.iter().enumerate() {
-        ws.stats = TraceStats::default();
-        let started = Instant::now();
-        let _ = surface.intersect(&ray, 0.0..f64::INFINITY, &mut ws);
-        let elapsed = started.elapsed();
-        if slowest.is_none_or(|s| elapsed > s.elapsed) {
-            slowest = Some(SlowObject {
-                index,
-                kind: surface.kind(),
-                elapsed,
-                escalations: Escalations::of(&ws.stats.roots),
-            });
-        }
-    }
+    let mut visits = 0;
+    scene
+        .aggregate
+        .any(&ray, 0.0..f64::INFINITY, &mut visits, |item| {
+            let index = item as usize;
+            let surface = &scene.surfaces[index];
+            ws.stats = TraceStats::default();
+            let started = Instant::now();
+            let _ = surface.intersect(&ray, 0.0..f64::INFINITY, &mut ws);
+            let elapsed = started.elapsed();
+            if slowest.is_none_or(|s| elapsed > s.elapsed) {
+                slowest = Some(SlowObject {
+                    index,
+                    kind: surface.kind(),
+                    elapsed,
+                    escalations: Escalations::of(&ws.stats.roots),
+                });
+            }
+            // Never a blocker: every object the ray reaches is queried.
+            false
+        });
     slowest
 }
 
