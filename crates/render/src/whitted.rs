@@ -90,7 +90,7 @@ pub fn nearest_hit(
 /// Whether any primitive blocks `ray` within `t_range` (through the scene's BVH); stops at the
 /// first blocker.
 pub fn occluded(scene: &PreparedScene, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> bool {
-    first_blocker(scene, ray, t_range, None, ws).is_some()
+    first_blocker(scene, ray, t_range, [NO_BLOCKER; 2], ws).is_some()
 }
 
 /// Whether primitive `i` blocks `ray` within `t_range`, counted in the statistics.
@@ -110,18 +110,18 @@ fn blocks(
 }
 
 /// The first primitive found blocking `ray` within `t_range` (through the scene's BVH), other
-/// than `known_clear`, which the caller has found not to block.
+/// than the `known_clear` ones ([`NO_BLOCKER`] for none), which the caller knows not to block.
 fn first_blocker(
     scene: &PreparedScene,
     ray: &Ray,
     t_range: Range<f64>,
-    known_clear: Option<u32>,
+    known_clear: [u32; 2],
     ws: &mut Workspace,
 ) -> Option<u32> {
     let mut visits = 0;
     let mut blocker = None;
     scene.aggregate.any(ray, t_range.clone(), &mut visits, |i| {
-        let hit = Some(i) != known_clear && blocks(scene, i as usize, ray, t_range.clone(), ws);
+        let hit = !known_clear.contains(&i) && blocks(scene, i as usize, ray, t_range.clone(), ws);
         if hit {
             blocker = Some(i);
         }
@@ -141,18 +141,32 @@ const NO_BLOCKER: u32 = u32::MAX;
 /// (skipping that primitive), which then remembers the new blocker. Neighbouring shadow rays
 /// tend to be blocked by the same object, and a hit on it saves the whole traversal. The
 /// verdict is [`occluded`]'s: the cached primitive is one of those the traversal could test,
-/// its verdict on the ray is the same either way, and any blocker answers yes. See
+/// its verdict on the ray is the same either way, and any blocker answers yes.
+///
+/// `leaving`: the surface the ray leaves, when it is [`Surface::convex`] and the ray leaves
+/// along its outward normal — it cannot block the ray, so it is not tested (on the SPD
+/// sphereflakes every shadow ray's traversal reaches the sphere it starts on). See
 /// `paper-notes/bvh.md` §2.
+///
+/// [`Surface::convex`]: crate::surface::Surface::convex
 fn occluded_towards(
     scene: &PreparedScene,
     ray: &Ray,
     t_range: Range<f64>,
     light: usize,
+    leaving: Option<u32>,
     ws: &mut Workspace,
 ) -> bool {
+    let leaving = leaving.unwrap_or(NO_BLOCKER);
+    #[cfg(test)]
+    let leaving = if ws.test_the_surface_left {
+        NO_BLOCKER
+    } else {
+        leaving
+    };
     #[cfg(test)]
     if ws.shadow_cache_off {
-        return occluded(scene, ray, t_range, ws);
+        return first_blocker(scene, ray, t_range, [leaving, NO_BLOCKER], ws).is_some();
     }
     if ws.shadow_blockers.len() <= light {
         ws.shadow_blockers
@@ -160,16 +174,16 @@ fn occluded_towards(
     }
     let cached = ws.shadow_blockers[light];
     // A workspace may come from another scene: an index out of range is no cache.
-    let known_clear = if (cached as usize) < scene.surfaces.len() {
+    let known_clear = if (cached as usize) < scene.surfaces.len() && cached != leaving {
         if blocks(scene, cached as usize, ray, t_range.clone(), ws) {
             ws.stats.shadow_cache_hits += 1;
             return true;
         }
-        Some(cached)
+        cached
     } else {
-        None
+        NO_BLOCKER
     };
-    match first_blocker(scene, ray, t_range, known_clear, ws) {
+    match first_blocker(scene, ray, t_range, [known_clear, leaving], ws) {
         Some(i) => {
             ws.shadow_blockers[light] = i;
             true
@@ -257,6 +271,10 @@ fn shade(
     if inside {
         n = -n;
     }
+    // A shadow ray below leaves along N (N·L > 0); when N is the outward normal of a convex
+    // surface, that surface cannot block it.
+    let leaving =
+        (g.normal.is_some() && !inside && scene.surfaces[index].convex()).then_some(index as u32);
     let p = g.p;
     let cs = surface_color(m, &scene.textures, g.uv);
 
@@ -279,7 +297,7 @@ fn shade(
                 let shadow = Ray::new(origin, l);
                 ws.stats.shadow_rays += 1;
                 let reach = (light.source - origin).length();
-                if occluded_towards(scene, &shadow, 0.0..reach, light_index, ws) {
+                if occluded_towards(scene, &shadow, 0.0..reach, light_index, leaving, ws) {
                     ws.stats.shadow_blocked += 1;
                     continue;
                 }
@@ -377,25 +395,36 @@ mod tests {
 
     use super::*;
     use crate::scene::{Light, Object, Scene, ShapeKind, ValidScene};
+    use crate::surface::SurfaceKind;
 
     /// `n` random spheres in a 10-unit cube and one light above them.
     fn spheres(n: usize, rng: &mut ChaCha8Rng) -> PreparedScene {
+        spheres_and_shapes(n, rng).0
+    }
+
+    /// [`spheres`] with each sphere's `(centre, radius)`.
+    fn spheres_and_shapes(n: usize, rng: &mut ChaCha8Rng) -> (PreparedScene, Vec<(DVec3, f64)>) {
         let mut scene = Scene::default();
+        let mut shapes = Vec::with_capacity(n);
         for _ in 0..n {
-            scene.objects.push(Object::new(ShapeKind::Sphere {
-                center: DVec3::new(
-                    rng.gen_range(-5.0..5.0),
-                    rng.gen_range(-5.0..5.0),
-                    rng.gen_range(-5.0..5.0),
-                ),
-                radius: rng.gen_range(0.3..1.5),
-            }));
+            let center = DVec3::new(
+                rng.gen_range(-5.0..5.0),
+                rng.gen_range(-5.0..5.0),
+                rng.gen_range(-5.0..5.0),
+            );
+            let radius = rng.gen_range(0.3..1.5);
+            shapes.push((center, radius));
+            scene
+                .objects
+                .push(Object::new(ShapeKind::Sphere { center, radius }));
         }
         scene.lights.push(Light {
             source: DVec3::new(0.0, 0.0, 20.0),
             color: DVec3::ONE,
         });
-        PreparedScene::new(&ValidScene::new(scene).expect("valid scene")).expect("prepared")
+        let prepared =
+            PreparedScene::new(&ValidScene::new(scene).expect("valid scene")).expect("prepared");
+        (prepared, shapes)
     }
 
     /// The shadow cache answers as the uncached query on coherent shadow rays (origins
@@ -420,7 +449,7 @@ mod tests {
                 let ray = Ray::new(origin, light - origin);
                 let range = 0.0..1.0;
                 let before = ws.shadow_blockers.first().copied();
-                let with_cache = occluded_towards(scene, &ray, range.clone(), 0, &mut ws);
+                let with_cache = occluded_towards(scene, &ray, range.clone(), 0, None, &mut ws);
                 let brute = scene
                     .surfaces
                     .iter()
@@ -439,6 +468,115 @@ mod tests {
         assert!(
             cached_blocks > blocked / 2,
             "the cache answers most: {cached_blocks}"
+        );
+    }
+
+    /// Shadow rays leaving a sphere along its outward normal, from points just outside it
+    /// (as `offset_ray_origin` puts them) towards lights around the scene: the verdict without
+    /// testing the sphere left is the verdict of every sphere tested, and that sphere is then
+    /// never tested.
+    #[test]
+    fn a_shadow_ray_leaving_a_sphere_is_not_blocked_by_it() {
+        let mut rng = ChaCha8Rng::seed_from_u64(31);
+        let (scene, shapes) = spheres_and_shapes(40, &mut rng);
+        let mut ws = Workspace::new();
+        let (mut blocked, mut rays) = (0, 0);
+        for _ in 0..4000 {
+            let i = rng.gen_range(0..shapes.len());
+            let (center, radius) = shapes[i];
+            let n = DVec3::new(
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+            )
+            .normalize();
+            let light = DVec3::new(
+                rng.gen_range(-20.0..20.0),
+                rng.gen_range(-20.0..20.0),
+                rng.gen_range(-20.0..20.0),
+            );
+            let origin = center + n * radius * (1.0 + 1e-9);
+            let l = light - origin;
+            if n.dot(l) <= 0.0 {
+                continue;
+            }
+            rays += 1;
+            let ray = Ray::new(origin, l);
+            let brute = scene
+                .surfaces
+                .iter()
+                .any(|s| s.occluded(&ray, 0.0..1.0, &mut ws));
+            // The fact the skip rests on: the certified test of the sphere left says no.
+            assert!(
+                !scene.surfaces[i].occluded(&ray, 0.0..1.0, &mut ws),
+                "sphere {i} blocks a ray leaving it from {origin}"
+            );
+            ws.shadow_blockers.clear();
+            let skipping = occluded_towards(&scene, &ray, 0.0..1.0, 0, Some(i as u32), &mut ws);
+            assert_eq!(skipping, brute, "shadow ray leaving sphere {i} at {origin}");
+            blocked += usize::from(brute);
+        }
+        assert!(
+            rays > 1000 && blocked > 100 && blocked < rays - 100,
+            "{blocked} of {rays}"
+        );
+    }
+
+    /// From the inside of a sphere (a ray refracted into glass), a shadow ray towards a light
+    /// beyond the far wall goes into the ball, not out of it: the sphere blocks it and must be
+    /// tested (the skip is only for rays leaving along the outward normal).
+    #[test]
+    fn a_shadow_ray_from_inside_a_sphere_is_blocked_by_it() {
+        let mut scene = Scene::default();
+        scene.objects.push(Object::new(ShapeKind::Sphere {
+            center: DVec3::ZERO,
+            radius: 2.0,
+        }));
+        scene.lights.push(Light {
+            source: DVec3::new(0.0, 0.0, 10.0),
+            color: DVec3::ONE,
+        });
+        let prepared =
+            PreparedScene::new(&ValidScene::new(scene).expect("valid scene")).expect("prepared");
+        let mut ws = Workspace::new();
+        // From the centre down to the wall at z = −2, whose inner side faces the light.
+        let _ = trace_primary(&prepared, &Ray::new(DVec3::ZERO, DVec3::NEG_Z), &mut ws);
+        assert_eq!(ws.stats.shadow_rays, 1, "one shadow ray");
+        assert_eq!(ws.stats.shadow_blocked, 1, "blocked by the sphere's top");
+    }
+
+    /// Not testing the convex surface a shadow ray leaves changes no pixel of an SPD scene
+    /// (balls-s2), and it saves tests: every shadow ray from a sphere reached its own sphere.
+    #[test]
+    fn skipping_the_surface_left_changes_no_pixel_of_the_sphereflake() {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/spd/balls-s2.nff");
+        let text = std::fs::read_to_string(&path).expect("scenes/spd/balls-s2.nff");
+        let scene = crate::scene::parse_nff(&text, &path).expect("valid NFF");
+        let prepared = PreparedScene::new(&scene).expect("prepared");
+        let size = 48;
+        let camera = crate::camera::Camera::new(&scene.camera, size, size);
+        let (mut skipping, mut testing) = (Workspace::new(), Workspace::new());
+        testing.test_the_surface_left = true;
+        for y in 0..size {
+            for x in 0..size {
+                let ray = camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
+                let a = trace_primary(&prepared, &ray, &mut skipping);
+                let b = trace_primary(&prepared, &ray, &mut testing);
+                assert_eq!(a, b, "pixel ({x}, {y})");
+            }
+        }
+        let (s, t) = (&skipping.stats, &testing.stats);
+        assert_eq!(s.shadow_rays, t.shadow_rays, "the same shadow rays");
+        assert_eq!(s.shadow_blocked, t.shadow_blocked, "the same verdicts");
+        let sphere = SurfaceKind::Sphere.index();
+        let (ts, tt) = (
+            s.per_kind[sphere].shadow_tests,
+            t.per_kind[sphere].shadow_tests,
+        );
+        assert!(
+            tt - ts > 300,
+            "sphere shadow tests {ts} skipping against {tt} testing"
         );
     }
 

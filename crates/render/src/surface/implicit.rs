@@ -133,6 +133,13 @@ pub trait ImplicitFn: Send + Sync + std::fmt::Debug {
         None
     }
 
+    /// Whether `F < 0` exactly on the inside of a convex body whose boundary is `F = 0`, so
+    /// that `∇F` points out of it (see [`Surface::convex`]); a bounding volume keeps a part of
+    /// that boundary, which is still convex in this sense.
+    fn convex(&self) -> bool {
+        false
+    }
+
     /// Surface parameters at `p`, where the shape defines them.
     fn uv(&self, _p: DVec3) -> Option<DVec2> {
         None
@@ -902,6 +909,10 @@ impl<F: ImplicitFn> Surface for Implicit<F> {
 
     fn occluded(&self, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> bool {
         self.nearest(ray, t_range, ws, true).is_some()
+    }
+
+    fn convex(&self) -> bool {
+        self.f.convex()
     }
 
     fn shading(&self, hit: &Hit) -> SurfaceGeometry {

@@ -111,6 +111,16 @@ pub trait Surface: Send + Sync + std::fmt::Debug {
     /// Normal, surface parameters and error bound at a hit returned by
     /// [`Surface::intersect`] on this surface.
     fn shading(&self, hit: &Hit) -> SurfaceGeometry;
+
+    /// Whether the surface is part of the boundary of a convex body and the normal of
+    /// [`Surface::shading`] points out of that body. A ray that starts on such a surface and
+    /// leaves it with a positive component along that normal stays in the open half-space
+    /// beyond the tangent plane, which the body lies behind, so it never meets the surface
+    /// again: the tracer does not test a shadow ray against the surface it leaves
+    /// (`paper-notes/bvh.md` §2). `false` unless the shape proves it.
+    fn convex(&self) -> bool {
+        false
+    }
 }
 
 impl<S: Surface + ?Sized> Surface for Box<S> {
@@ -128,5 +138,8 @@ impl<S: Surface + ?Sized> Surface for Box<S> {
     }
     fn shading(&self, hit: &Hit) -> SurfaceGeometry {
         (**self).shading(hit)
+    }
+    fn convex(&self) -> bool {
+        (**self).convex()
     }
 }

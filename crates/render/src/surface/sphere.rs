@@ -66,6 +66,11 @@ impl ImplicitFn for Sphere {
         ]);
     }
 
+    /// `|p − c|² − r²` is negative exactly inside the ball.
+    fn convex(&self) -> bool {
+        true
+    }
+
     fn bounds(&self) -> Option<Bounds3> {
         let r = DVec3::splat(self.radius);
         Some(Bounds3::new(self.center - r, self.center + r))
