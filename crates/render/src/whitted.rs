@@ -546,7 +546,8 @@ mod tests {
     }
 
     /// Not testing the convex surface a shadow ray leaves changes no pixel of an SPD scene
-    /// (balls-s2), and it saves tests: every shadow ray from a sphere reached its own sphere.
+    /// (balls-s2: spheres over a floor polygon, both convex), and it saves tests: every shadow
+    /// ray from a sphere reached its own sphere.
     #[test]
     fn skipping_the_surface_left_changes_no_pixel_of_the_sphereflake() {
         let path =

@@ -86,6 +86,11 @@ impl ImplicitFn for Plane {
         &self.poly
     }
 
+    /// `n·(p − origin)` is negative exactly in the half-space behind the plane.
+    fn convex(&self) -> bool {
+        true
+    }
+
     /// `n·(o − origin) + (n·d)·t`.
     fn restrict(&self, o: DVec3, d: DVec3, _: &mut RestrictScratch, out: &mut Vec<f64>) {
         out.clear();

@@ -153,4 +153,9 @@ impl Surface for Polygon {
     fn shading(&self, hit: &Hit) -> SurfaceGeometry {
         self.plane.shading(hit)
     }
+
+    /// A part of its plane, with the plane's normal.
+    fn convex(&self) -> bool {
+        self.plane.convex()
+    }
 }
