@@ -70,12 +70,36 @@ pub fn nearest_hit(
     t_range: Range<f64>,
     ws: &mut Workspace,
 ) -> Option<(usize, Hit)> {
+    nearest_hit_leaving(scene, ray, t_range, None, ws)
+}
+
+/// [`nearest_hit`] for a ray that leaves primitive `leaving` along its outward normal when
+/// that primitive is [`Surface::convex`]: it cannot be hit again, so it is not asked (see
+/// [`occluded_towards`]).
+///
+/// [`Surface::convex`]: crate::surface::Surface::convex
+fn nearest_hit_leaving(
+    scene: &PreparedScene,
+    ray: &Ray,
+    t_range: Range<f64>,
+    leaving: Option<u32>,
+    ws: &mut Workspace,
+) -> Option<(usize, Hit)> {
+    #[cfg(test)]
+    let leaving = if ws.test_the_surface_left {
+        None
+    } else {
+        leaving
+    };
     // Each primitive is asked over the whole range, so its answer does not depend on the
     // visiting order: the result is the least (t, index), as a loop over all would find.
     let mut visits = 0;
     let best = scene
         .aggregate
         .nearest(ray, t_range.clone(), &mut visits, |i| {
+            if Some(i) == leaving {
+                return None;
+            }
             let surface = &scene.surfaces[i as usize];
             let kind = surface.kind().index();
             ws.stats.per_kind[kind].tests += 1;
@@ -234,8 +258,15 @@ impl Branch {
 }
 
 /// Stam's `TraceRay` for a secondary ray (depth ≥ 2).
-fn trace(scene: &PreparedScene, ray: &Ray, branch: Branch, ws: &mut Workspace) -> Rgb {
-    match nearest_hit(scene, ray, SPAWN_RANGE, ws) {
+/// `leaving`: as in [`nearest_hit_leaving`].
+fn trace(
+    scene: &PreparedScene,
+    ray: &Ray,
+    branch: Branch,
+    leaving: Option<u32>,
+    ws: &mut Workspace,
+) -> Rgb {
+    match nearest_hit_leaving(scene, ray, SPAWN_RANGE, leaving, ws) {
         Some((i, hit)) => shade(scene, ray, i, &hit, branch, ws),
         None => scene.world.background,
     }
@@ -271,8 +302,8 @@ fn shade(
     if inside {
         n = -n;
     }
-    // A shadow ray below leaves along N (N·L > 0); when N is the outward normal of a convex
-    // surface, that surface cannot block it.
+    // A shadow ray below leaves along N (N·L > 0), and so does the reflected ray; when N is
+    // the outward normal of a convex surface, that surface cannot block or meet them.
     let leaving =
         (g.normal.is_some() && !inside && scene.surfaces[index].convex()).then_some(index as u32);
     let p = g.p;
@@ -359,7 +390,7 @@ fn shade(
                 } else {
                     ws.stats.refracted_rays += 1;
                     let ray = Ray::new(origin, dir);
-                    color += trace(scene, &ray, branch.child(m.kt), ws) * m.kt;
+                    color += trace(scene, &ray, branch.child(m.kt), None, ws) * m.kt;
                 }
             } else {
                 ws.stats.total_internal_reflections += 1;
@@ -381,7 +412,9 @@ fn shade(
         }
         let origin = offset_ray_origin(p, g.p_err, n, reflect_dir);
         let ray = Ray::new(origin, reflect_dir);
-        color += trace(scene, &ray, branch.child(reflect_weight), ws) * reflect_weight;
+        // R·N = −V·N > 0: the reflected ray leaves along N, as the shadow rays do (a total
+        // internal reflection is inside, where `leaving` is `None`).
+        color += trace(scene, &ray, branch.child(reflect_weight), leaving, ws) * reflect_weight;
     }
 
     // Stam clamps each intensity to at most 1 (end of `Intensity`).
@@ -545,9 +578,9 @@ mod tests {
         assert_eq!(ws.stats.shadow_blocked, 1, "blocked by the sphere's top");
     }
 
-    /// Not testing the convex surface a shadow ray leaves changes no pixel of an SPD scene
-    /// (balls-s2: spheres over a floor polygon, both convex), and it saves tests: every shadow
-    /// ray from a sphere reached its own sphere.
+    /// Not testing the convex surface a shadow or reflected ray leaves changes no pixel of an
+    /// SPD scene (balls-s2: mirror spheres over a floor polygon, both convex), and it saves
+    /// tests: every shadow and reflected ray from a sphere reached its own sphere.
     #[test]
     fn skipping_the_surface_left_changes_no_pixel_of_the_sphereflake() {
         let path =
@@ -578,6 +611,16 @@ mod tests {
         assert!(
             tt - ts > 300,
             "sphere shadow tests {ts} skipping against {tt} testing"
+        );
+        assert_eq!(
+            s.reflected_rays, t.reflected_rays,
+            "the same reflected rays"
+        );
+        let (ns, nt) = (s.per_kind[sphere].tests, t.per_kind[sphere].tests);
+        assert!(
+            nt - ns > 300 && nt - ns <= s.reflected_rays,
+            "sphere tests {ns} skipping against {nt} testing, {} reflected rays",
+            s.reflected_rays
         );
     }
 

@@ -28,8 +28,8 @@ pub struct Workspace {
     /// check the cache changes no verdict and no pixel.
     #[cfg(test)]
     pub(crate) shadow_cache_off: bool,
-    /// Tests a shadow ray against the convex surface it leaves too: for the tests that check
-    /// skipping that surface changes no verdict and no pixel.
+    /// Tests a shadow or reflected ray against the convex surface it leaves too: for the tests
+    /// that check skipping that surface changes no verdict and no pixel.
     #[cfg(test)]
     pub(crate) test_the_surface_left: bool,
     /// Counters.
