@@ -767,8 +767,9 @@ fn unreal_near_pairs(c: &[f64], s: &mut Scratch) -> bool {
         }
         let (_, dp, _) = horner_c(c, s.z[i]);
         let reach = n as f64 * s.p_bound[i] / dp.abs_fast();
-        // NaN (no bound, or no derivative): real again, as an unknown reach.
-        if !(s.z[i].im.abs() > reach) {
+        // A NaN reach (no bound, or no derivative) is not off the axis: real again.
+        let off_axis = s.z[i].im.abs() > reach;
+        if !off_axis {
             s.z[i] = C::new(s.z[i].re, 0.0);
             s.p_bound[i] = f64::NAN;
             s.done[i] = false;
