@@ -77,6 +77,13 @@ const MAX_POLISH_STEPS: u32 = 8;
 /// eight sweeps and cost 1.25× its instructions with the stage.
 const NEAR_REAL_MAX_WORK: usize = 512;
 
+/// Lowest degree for which [`unreal_near_pairs`] runs. Why 5, measured (callgrind,
+/// `paper-notes/isolation.md`, "All-roots queries: near-real pairs"): on the two
+/// Orellana–De Michele quartics it fires for (degree 4, a pair near a double root) the stage
+/// cost 29.6 K instructions where their subdivision cost 21.5 K; on planted degree 14–20 it
+/// pays. Degrees 5–13 were not measured: the stage runs there (the test pair of degree 5).
+const NEAR_REAL_MIN_DEGREE: usize = 5;
+
 /// A real value whose rigorous `f64` error bound is more than `1/COMPENSATE_BELOW` of its
 /// magnitude is recomputed by the compensated Horner scheme (relative). Why 16: above it the
 /// `f64` bound adds at most 6 % to `|p(x)|` (to the disc radius, or to the Newton step's
@@ -755,7 +762,7 @@ fn unreal_near_pairs(c: &[f64], s: &mut Scratch) -> bool {
         }
     }
     let restored = s.restored.iter().filter(|&&r| r).count();
-    if restored == 0 || restored * n > NEAR_REAL_MAX_WORK {
+    if restored == 0 || n < NEAR_REAL_MIN_DEGREE || restored * n > NEAR_REAL_MAX_WORK {
         return false;
     }
     polish_complex(c, s);
