@@ -36,6 +36,7 @@
 use std::cell::Cell;
 
 use crate::bernstein::Bracket;
+use crate::double_double::{DD_UNDERFLOW, DD_UNIT, Dd, gamma_u};
 use crate::eval_bound::{
     certified_sign, comp_horner_bounded, comp_horner_bounded_and_derivative, horner_bounded,
     horner_derivative_and_bound,
@@ -65,6 +66,23 @@ const MAX_ABERTH_SWEEPS: u32 = 80;
 /// for a simple root; the rest allows a linear start (Wilkinson-20's middle roots start
 /// ≈ 0.1 off, with `p'` good to ~10 %).
 const MAX_POLISH_STEPS: u32 = 8;
+
+/// Largest `k·n` (approximations restored times degree) for which [`unreal_near_pairs`]
+/// polishes the restored approximations in double-double: its cost is `O(k·n)` per sweep,
+/// up to [`MAX_POLISH_STEPS`] sweeps, and it pays only where it decides what the
+/// subdivision would otherwise answer. Why 512, measured (callgrind, `paper-notes/
+/// isolation.md`, "All-roots queries: near-real pairs"): the planted corpus of degree 3–20
+/// restores 2–14 approximations of degree 14–20 (`k·n ≤ 280`) and every such query is then
+/// decided; planted degree 40 restores 33–34 of 40 (`k·n ≥ 1 320`), stays undecided after
+/// eight sweeps and cost 1.25× its instructions with the stage.
+const NEAR_REAL_MAX_WORK: usize = 512;
+
+/// Lowest degree for which [`unreal_near_pairs`] runs. Why 5, measured (callgrind,
+/// `paper-notes/isolation.md`, "All-roots queries: near-real pairs"): on the two
+/// Orellana–De Michele quartics it fires for (degree 4, a pair near a double root) the stage
+/// cost 29.6 K instructions where their subdivision cost 21.5 K; on planted degree 14–20 it
+/// pays. Degrees 5–13 were not measured: the stage runs there (the test pair of degree 5).
+const NEAR_REAL_MIN_DEGREE: usize = 5;
 
 /// A real value whose rigorous `f64` error bound is more than `1/COMPENSATE_BELOW` of its
 /// magnitude is recomputed by the compensated Horner scheme (relative). Why 16: above it the
@@ -214,6 +232,12 @@ struct Scratch {
     hull: Vec<(usize, f64)>,
     /// The coefficients of `p(g + y)` for the starting points ([`starting_points`]).
     shifted: Vec<f64>,
+    /// The approximation `zᵢ` as the `f64` iteration left it, before it was made real
+    /// (`Im = 0` when it was not): where the real polish cannot converge, a near-real pair
+    /// goes back to it ([`unreal_near_pairs`]).
+    before_real: Vec<C>,
+    /// Whether `zᵢ` went back to its complex value ([`unreal_near_pairs`]).
+    restored: Vec<bool>,
 }
 
 impl Scratch {
@@ -241,6 +265,9 @@ impl Scratch {
         self.cluster.reserve(m.saturating_sub(self.cluster.len()));
         self.hull.reserve(m.saturating_sub(self.hull.len()));
         self.shifted.reserve(m.saturating_sub(self.shifted.len()));
+        self.before_real
+            .reserve(m.saturating_sub(self.before_real.len()));
+        self.restored.reserve(m.saturating_sub(self.restored.len()));
     }
 }
 
@@ -309,21 +336,41 @@ pub(crate) fn real_pieces(c: &[f64], lo: f64, hi: f64, mut emit: impl FnMut(Piec
     let decided = approximate(c, &mut s) && certify(c, &mut s);
     if decided {
         decide(c, lo, hi, &mut s);
-        // The three lists are disjoint from each other: emit them in order.
-        s.pieces.clear();
-        s.pieces.extend(s.brackets.iter().map(|&b| Piece::Root(b)));
-        s.pieces
-            .extend(s.undecided.iter().map(|&(a, b)| Piece::Undecided(a, b)));
-        s.pieces
-            .extend(s.multiple.iter().map(|&r| Piece::Multiple(r)));
-        s.pieces
-            .sort_unstable_by(|x, y| x.start().total_cmp(&y.start()));
+        collect_pieces(&mut s);
+        if !s.undecided.is_empty() {
+            let undecided = undecided_width(&s);
+            if unreal_near_pairs(c, &mut s) && certify(c, &mut s) {
+                decide(c, lo, hi, &mut s);
+                // Either answer is certified: keep the one that leaves less to subdivide.
+                if undecided_width(&s) < undecided {
+                    collect_pieces(&mut s);
+                }
+            }
+        }
         for &piece in &s.pieces {
             emit(piece);
         }
     }
     SCRATCH.set(s);
     decided
+}
+
+/// The answer of [`decide`] as [`Piece`]s in `s.pieces`, in order.
+fn collect_pieces(s: &mut Scratch) {
+    // The three lists are disjoint from each other: merge them by their starts.
+    s.pieces.clear();
+    s.pieces.extend(s.brackets.iter().map(|&b| Piece::Root(b)));
+    s.pieces
+        .extend(s.undecided.iter().map(|&(a, b)| Piece::Undecided(a, b)));
+    s.pieces
+        .extend(s.multiple.iter().map(|&r| Piece::Multiple(r)));
+    s.pieces
+        .sort_unstable_by(|x, y| x.start().total_cmp(&y.start()));
+}
+
+/// The total length of the parts [`decide`] left undecided.
+fn undecided_width(s: &Scratch) -> f64 {
+    s.undecided.iter().map(|&(l, h)| h - l).sum()
 }
 
 /// Starting points on the circles of the Newton polygon (Bini 1996, §3): the upper convex
@@ -583,6 +630,8 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
             break;
         }
     }
+    s.before_real.clear();
+    s.before_real.extend_from_slice(&s.z);
     for i in 0..n {
         let z = s.z[i];
         if z.im != 0.0 {
@@ -600,11 +649,17 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
             }
         }
     }
+    s.p_bound.clear();
+    s.p_bound.resize(n, f64::NAN);
+    for i in 0..n {
+        s.done[i] = s.z[i].im != 0.0;
+    }
     polish_real(c, s);
     true
 }
 
-/// Aberth sweeps over the real approximations with compensated Horner values (as accurate
+/// Aberth sweeps over the real approximations not `done` (the caller marks them and sets
+/// their `s.p_bound` to NaN) with compensated Horner values (as accurate
 /// as Horner in twice the working precision; `eval_bound.rs`), until each value is within
 /// its own error bound or its step vanishes: what the `f64` iteration cannot resolve
 /// (Wilkinson-20's middle roots, where `f64` values are noise within ±0.1 of the root).
@@ -619,11 +674,6 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
 /// small).
 fn polish_real(c: &[f64], s: &mut Scratch) {
     let n = s.z.len();
-    s.p_bound.clear();
-    s.p_bound.resize(n, f64::NAN);
-    for i in 0..n {
-        s.done[i] = s.z[i].im != 0.0;
-    }
     let mut far = s.z.iter().any(|&z| is_far(z));
     for _ in 0..MAX_POLISH_STEPS {
         let mut moving = false;
@@ -683,6 +733,154 @@ fn polish_values_rescaled(c: &[f64], x: f64) -> (f64, f64, f64) {
         (v, err + ETA * q.len() as f64, ldexp(d, -r.k))
     })
     .unwrap_or((f64::NAN, f64::NAN, f64::NAN))
+}
+
+/// Second chance for a query the discs left partly undecided (`paper-notes/isolation.md`,
+/// "All-roots queries: near-real pairs"): the approximations that were made real
+/// ([`approximate`]) whose real polish did not converge (no bound kept: `s.p_bound` NaN)
+/// and whose disc is not isolated go back to their complex values and are polished as
+/// complex roots with double-double values of `p` ([`polish_complex`]). Those are the
+/// near-real conjugate pairs of the stored polynomial (rounding made two close real roots
+/// complex) and the real roots next to them: a real approximation cannot converge to a
+/// non-real root, and its wandering keeps its neighbours' polish from converging too. A
+/// restored approximation that ends within its own (now double-double) Newton reach of the
+/// axis is a real root's, as in [`approximate`]: made real again and polished as such. Only
+/// the certificate decides: a disc with `|Im zᵢ| > rᵢ` holds no real point. `false` when
+/// there is nothing to restore.
+fn unreal_near_pairs(c: &[f64], s: &mut Scratch) -> bool {
+    let n = s.z.len();
+    s.restored.clear();
+    for i in 0..n {
+        let restore = s.z[i].im == 0.0
+            && s.before_real[i].im != 0.0
+            && s.p_bound[i].is_nan()
+            && !s.isolated[i];
+        s.restored.push(restore);
+        s.done[i] = !restore;
+        if restore {
+            s.z[i] = s.before_real[i];
+        }
+    }
+    let restored = s.restored.iter().filter(|&&r| r).count();
+    if restored == 0 || n < NEAR_REAL_MIN_DEGREE || restored * n > NEAR_REAL_MAX_WORK {
+        return false;
+    }
+    polish_complex(c, s);
+    let mut real_again = false;
+    for i in 0..n {
+        s.done[i] = true;
+        if !s.restored[i] || s.z[i].im == 0.0 {
+            continue;
+        }
+        let (_, dp, _) = horner_c(c, s.z[i]);
+        let reach = n as f64 * s.p_bound[i] / dp.abs_fast();
+        // A NaN reach (no bound, or no derivative) is not off the axis: real again.
+        let off_axis = s.z[i].im.abs() > reach;
+        if !off_axis {
+            s.z[i] = C::new(s.z[i].re, 0.0);
+            s.p_bound[i] = f64::NAN;
+            s.done[i] = false;
+            real_again = true;
+        }
+    }
+    if real_again {
+        polish_real(c, s);
+    }
+    true
+}
+
+/// Aberth sweeps over the approximations not `done`, with `p(zᵢ)` in double-double complex
+/// arithmetic ([`dd_horner_c`]: about twice the working precision) and `p'(zᵢ)` in `f64`
+/// (Newton's step needs only a few correct digits of it), until `p(zᵢ)` is within its own
+/// error bound or the step does not move `zᵢ`; at most [`MAX_POLISH_STEPS`] sweeps. The
+/// rigorous bound on `|p(zᵢ)|` at the final `zᵢ` goes to `s.p_bound` for the certificate:
+/// its `f64` bound ([`abs_p_upper`]) is the noise that hid the pair's imaginary parts.
+fn polish_complex(c: &[f64], s: &mut Scratch) {
+    let n = s.z.len();
+    let far = s.z.iter().any(|&z| is_far(z));
+    for _ in 0..MAX_POLISH_STEPS {
+        let mut moving = false;
+        for i in 0..n {
+            if s.done[i] {
+                continue;
+            }
+            let z = s.z[i];
+            let (v, bound) = dd_horner_c(c, z);
+            s.p_bound[i] = bound;
+            let (_, dp, _) = horner_c(c, z);
+            if !(bound.is_finite() && dp.is_finite()) {
+                s.done[i] = true;
+                s.p_bound[i] = f64::NAN;
+                continue;
+            }
+            if v.abs() <= bound - v.abs() {
+                // |p(z)| is within the value's own error: z is as good as this precision gets.
+                s.done[i] = true;
+                continue;
+            }
+            let newton = v.div(dp);
+            let sum = aberth_sum(z, &s.z[..i], &s.z[i + 1..], far);
+            let w = newton.div(C::new(1.0, 0.0).sub(newton.mul(sum)));
+            let next = z.sub(w);
+            if !next.is_finite() || next == z {
+                s.done[i] = true;
+                continue;
+            }
+            s.z[i] = next;
+            moving = true;
+        }
+        if !moving {
+            break;
+        }
+    }
+    // Approximations still moving after the last sweep: their bound at the final point.
+    for i in 0..n {
+        if !s.done[i] {
+            s.p_bound[i] = dd_horner_c(c, s.z[i]).1;
+            if !s.p_bound[i].is_finite() {
+                s.p_bound[i] = f64::NAN;
+            }
+        }
+    }
+}
+
+/// `p(z)` by Horner's rule in double-double complex arithmetic (rounded to an `f64` complex
+/// value, for the iteration) and a rigorous upper bound on `|p(z)|` for the stored
+/// coefficients and the stored `z` (infinite or NaN on overflow).
+///
+/// # Accuracy
+/// Every double-double operation (`Dd::mul_f`, `Dd::add`, `Dd::add_f`) is within
+/// [`DD_UNIT`] `= U` of its exact result, relatively (Joldes, Muller & Popescu 2017), so the
+/// standard model holds with `U` for `u` and the argument of [`abs_p_upper`] carries over:
+/// a complex product errs by `|δ| ≤ √2·γ_U(2) < 3U` (Higham, Lemma 3.5), the addition of a
+/// real coefficient by `U` on the real part, and `|v − p(z)| ≤ γ_U(4n + 1)·Σ|cᵢ||z|ⁱ`; the
+/// code takes `γ_U(6·len)`, with `S = Σ|cᵢ||z|ⁱ` computed in `f64` from `|z|` rounded up and
+/// multiplied by `1 + γ(2·len)` for its own `2·len` roundings. Underflow: each of the seven
+/// double-double operations per step errs by at most [`DD_UNDERFLOW`] absolutely beyond the
+/// relative bound, carried forward by powers of `|z|`: `8·DD_UNDERFLOW·Σ|z|ⁱ` covers them.
+/// `|v|` is bounded by the sum of the moduli of the four parts; the final additions round
+/// within `(1 + 8ε)`.
+fn dd_horner_c(c: &[f64], z: C) -> (C, f64) {
+    const EPS: f64 = f64::EPSILON;
+    let az = z.abs() * (1.0 + 2.0 * EPS);
+    let (mut re, mut im) = (Dd::ZERO, Dd::ZERO);
+    let (mut s, mut w) = (0.0f64, 0.0f64);
+    for &ci in c.iter().rev() {
+        let r = re.mul_f(z.re).add(im.mul_f(-z.im));
+        im = re.mul_f(z.im).add(im.mul_f(z.re));
+        re = r.add_f(ci);
+        s = s * az + ci.abs();
+        w = w * az + 1.0;
+    }
+    let len = c.len();
+    let g = gamma_u(6 * len, DD_UNIT);
+    let err = g / (1.0 - g) * s * (1.0 + gamma_u(2 * len, UNIT_ROUNDOFF)) * (1.0 + 8.0 * EPS)
+        + 8.0 * DD_UNDERFLOW * w * (1.0 + gamma_u(2 * len, UNIT_ROUNDOFF));
+    let modulus = re.hi.abs() + re.lo.abs() + im.hi.abs() + im.lo.abs();
+    (
+        C::new(re.hi + re.lo, im.hi + im.lo),
+        (modulus + err) * (1.0 + 8.0 * EPS),
+    )
 }
 
 /// Aberth's sum `Σ_j 1/(z − zⱼ)` over the other approximations (`before` and `after` `zᵢ`),
@@ -1424,23 +1622,42 @@ mod tests {
 
     #[test]
     fn clusters_and_double_roots_fall_through_and_are_still_right() {
-        let close = Poly::from_roots(&[0.5, 0.5 + 4.0 * f64::EPSILON, 2.0, -1.0, 3.0]);
         // A double root off the f64 grid: (3x − 1)², exact coefficients, root 1/3.
         let double = &Poly::new(vec![1.0, -6.0, 9.0]) * &Poly::from_roots(&[2.0, -1.0, 3.0]);
-        for p in [close, double] {
-            let stats = check(&p, -10.0, 10.0);
-            assert_eq!(
-                (stats.inclusion_decided, stats.inclusion_undecided),
-                (0, 1),
-                "undecided, answered by subdivision: {stats:?}"
-            );
-            // The discs of −1, 2 and 3 decide those roots; only the shadows of the pair
-            // go to subdivision, as one part.
-            assert_eq!(
-                stats.inclusion_subranges, 1,
-                "one undecided part: {stats:?}"
-            );
-        }
+        let stats = check(&double, -10.0, 10.0);
+        assert_eq!(
+            (stats.inclusion_decided, stats.inclusion_undecided),
+            (0, 1),
+            "undecided, answered by subdivision: {stats:?}"
+        );
+        // The discs of −1, 2 and 3 decide those roots; only the shadows of the pair go to
+        // subdivision, as one part.
+        assert_eq!(
+            stats.inclusion_subranges, 1,
+            "one undecided part: {stats:?}"
+        );
+    }
+
+    /// Roots 0.5 and 0.5 + 4ε, rounded into the stored coefficients, become a conjugate pair
+    /// near the axis (the exact oracle finds 3 real roots): the `f64` values cannot tell it
+    /// from two real roots and left it undecided (one part, to subdivision, before session 12); polished as complex roots in
+    /// double-double ([`unreal_near_pairs`]) its discs lie off the axis, and the discs decide
+    /// the query: exactly −1, 2 and 3, as the exact oracle says.
+    #[test]
+    fn pair_four_ulps_apart_is_certified_non_real() {
+        let close = Poly::from_roots(&[0.5, 0.5 + 4.0 * f64::EPSILON, 2.0, -1.0, 3.0]);
+        let stats = check(&close, -10.0, 10.0);
+        assert_eq!(
+            (
+                stats.inclusion_decided,
+                stats.inclusion_undecided,
+                stats.subdivisions
+            ),
+            (1, 0, 0),
+            "decided by the discs: {stats:?}"
+        );
+        let roots = close.real_roots(-10.0, 10.0, 1e-15).expect("valid query");
+        assert_eq!(roots.len(), 3, "{roots:?}");
     }
 
     #[test]
@@ -1724,6 +1941,105 @@ mod tests {
             let p = Poly::new(c);
             full_precision_roots(&p);
         }
+    }
+
+    /// Planted polynomials of degree 13–19 (roots `k/m`, `m ≤ 1024`, drawn as in the bench's
+    /// planted corpus) whose stored `f64` polynomial has near-real conjugate pairs: the first
+    /// decision leaves a part undecided (the pair's approximations were made real and could
+    /// not converge); the pairs polished as complex roots ([`unreal_near_pairs`]) decide the
+    /// whole range, the query subdivides nothing, and the answer is the exact oracle's.
+    #[test]
+    fn near_real_pairs_are_decided_by_the_discs() {
+        for seed in [0u64, 2, 18, 89] {
+            let mut rng = ChaCha8Rng::seed_from_u64(seed);
+            let d = rng.gen_range(12..=20usize);
+            let roots: Vec<_> = (0..d)
+                .map(|_| {
+                    let m = rng.gen_range(2..=1024i64);
+                    rat(rng.gen_range(0..=m), m)
+                })
+                .collect();
+            let p = planted(&roots).to_f64();
+            let c = p.coeffs();
+            let (lo, hi) = (-0.5, 1.5);
+            let mut s = Scratch::default();
+            s.reserve(d);
+            assert!(approximate(c, &mut s) && certify(c, &mut s), "seed {seed}");
+            decide(c, lo, hi, &mut s);
+            assert!(
+                !s.undecided.is_empty(),
+                "seed {seed}: the f64 discs alone decide"
+            );
+            assert!(
+                unreal_near_pairs(c, &mut s) && certify(c, &mut s),
+                "seed {seed}: nothing restored"
+            );
+            decide(c, lo, hi, &mut s);
+            assert!(s.undecided.is_empty(), "seed {seed}: {:?}", s.undecided);
+            let stats = check(&p, lo, hi);
+            assert_eq!(
+                (
+                    stats.inclusion_decided,
+                    stats.inclusion_undecided,
+                    stats.subdivisions
+                ),
+                (1, 0, 0),
+                "seed {seed}: decided by the discs alone: {stats:?}"
+            );
+        }
+    }
+
+    /// The double-double bound on `|p(z)|` ([`dd_horner_c`]) at the complex approximations
+    /// the near-real polish ends at (where `p` is tiny and its `f64` value is noise) is at
+    /// least the exact modulus of the stored polynomial there (rational arithmetic), and
+    /// far below the `f64` bound ([`abs_p_upper`]) that could not decide these pairs.
+    #[test]
+    fn double_double_complex_bound_holds_exactly() {
+        let mut checked = 0;
+        for seed in [0u64, 2, 18, 89] {
+            let mut rng = ChaCha8Rng::seed_from_u64(seed);
+            let d = rng.gen_range(12..=20usize);
+            let roots: Vec<_> = (0..d)
+                .map(|_| {
+                    let m = rng.gen_range(2..=1024i64);
+                    rat(rng.gen_range(0..=m), m)
+                })
+                .collect();
+            let p = planted(&roots).to_f64();
+            let c = p.coeffs();
+            let exact = p.to_rat().expect("finite coefficients");
+            let mut s = Scratch::default();
+            s.reserve(d);
+            assert!(approximate(c, &mut s) && certify(c, &mut s), "seed {seed}");
+            decide(c, -0.5, 1.5, &mut s);
+            assert!(unreal_near_pairs(c, &mut s), "seed {seed}");
+            for (i, &z) in s.z.iter().enumerate() {
+                if !s.restored[i] || z.im == 0.0 {
+                    continue;
+                }
+                let (_, bound) = dd_horner_c(c, z);
+                // Exact p(x + iy) = Σ aₖ (x + iy)^k, real and imaginary parts in rationals.
+                let (x, y) = (rat_from_f64(z.re).unwrap(), rat_from_f64(z.im).unwrap());
+                let (mut re, mut im) = (Rat::from_integer(0.into()), Rat::from_integer(0.into()));
+                for a in exact.coeffs().iter().rev() {
+                    let nre = &re * &x - &im * &y + a;
+                    im = &re * &y + &im * &x;
+                    re = nre;
+                }
+                let b = rat_from_f64(bound).expect("finite bound");
+                assert!(
+                    re.clone() * &re + im.clone() * &im <= &b * &b,
+                    "seed {seed}: {z:?}"
+                );
+                let (f64_bound, e) = abs_p_upper(c, z);
+                assert!(
+                    e == 0 && bound * 1e6 < f64_bound,
+                    "seed {seed}: {bound:e} vs {f64_bound:e}"
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked >= 8, "{checked} complex approximations checked");
     }
 }
 #[cfg(test)]
