@@ -1943,6 +1943,21 @@ mod tests {
         }
     }
 
+    /// The stored `f64` polynomial with planted roots `k/m` (`m ≤ 1024`) of degree 12–20
+    /// drawn from `seed`, and its degree (the seeds below give degrees 13–19 with near-real
+    /// pairs).
+    fn near_real_planted(seed: u64) -> (Poly<f64>, usize) {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let d = rng.gen_range(12..=20usize);
+        let roots: Vec<_> = (0..d)
+            .map(|_| {
+                let m = rng.gen_range(2..=1024i64);
+                rat(rng.gen_range(0..=m), m)
+            })
+            .collect();
+        (planted(&roots).to_f64(), d)
+    }
+
     /// Planted polynomials of degree 13–19 (roots `k/m`, `m ≤ 1024`, drawn as in the bench's
     /// planted corpus) whose stored `f64` polynomial has near-real conjugate pairs: the first
     /// decision leaves a part undecided (the pair's approximations were made real and could
@@ -1951,15 +1966,7 @@ mod tests {
     #[test]
     fn near_real_pairs_are_decided_by_the_discs() {
         for seed in [0u64, 2, 18, 89] {
-            let mut rng = ChaCha8Rng::seed_from_u64(seed);
-            let d = rng.gen_range(12..=20usize);
-            let roots: Vec<_> = (0..d)
-                .map(|_| {
-                    let m = rng.gen_range(2..=1024i64);
-                    rat(rng.gen_range(0..=m), m)
-                })
-                .collect();
-            let p = planted(&roots).to_f64();
+            let (p, d) = near_real_planted(seed);
             let c = p.coeffs();
             let (lo, hi) = (-0.5, 1.5);
             let mut s = Scratch::default();
@@ -1997,15 +2004,7 @@ mod tests {
     fn double_double_complex_bound_holds_exactly() {
         let mut checked = 0;
         for seed in [0u64, 2, 18, 89] {
-            let mut rng = ChaCha8Rng::seed_from_u64(seed);
-            let d = rng.gen_range(12..=20usize);
-            let roots: Vec<_> = (0..d)
-                .map(|_| {
-                    let m = rng.gen_range(2..=1024i64);
-                    rat(rng.gen_range(0..=m), m)
-                })
-                .collect();
-            let p = planted(&roots).to_f64();
+            let (p, d) = near_real_planted(seed);
             let c = p.coeffs();
             let exact = p.to_rat().expect("finite coefficients");
             let mut s = Scratch::default();

@@ -578,11 +578,12 @@ mod tests {
         assert_eq!(ws.stats.shadow_blocked, 1, "blocked by the sphere's top");
     }
 
-    /// Not testing the convex surface a shadow or reflected ray leaves changes no pixel of an
-    /// SPD scene (balls-s2: mirror spheres over a floor polygon, both convex), and it saves
-    /// tests: every shadow and reflected ray from a sphere reached its own sphere.
-    #[test]
-    fn skipping_the_surface_left_changes_no_pixel_of_the_sphereflake() {
+    /// Traces every pixel of scenes/spd/balls-s2.nff at 48² with a default workspace and with
+    /// one that `configure` changed, asserts the two give the same samples, and returns the
+    /// two workspaces' counters (default first).
+    fn sphereflake_pixels_agree(
+        configure: impl Fn(&mut Workspace),
+    ) -> (crate::stats::TraceStats, crate::stats::TraceStats) {
         let path =
             std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/spd/balls-s2.nff");
         let text = std::fs::read_to_string(&path).expect("scenes/spd/balls-s2.nff");
@@ -590,17 +591,25 @@ mod tests {
         let prepared = PreparedScene::new(&scene).expect("prepared");
         let size = 48;
         let camera = crate::camera::Camera::new(&scene.camera, size, size);
-        let (mut skipping, mut testing) = (Workspace::new(), Workspace::new());
-        testing.test_the_surface_left = true;
+        let (mut default, mut changed) = (Workspace::new(), Workspace::new());
+        configure(&mut changed);
         for y in 0..size {
             for x in 0..size {
                 let ray = camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
-                let a = trace_primary(&prepared, &ray, &mut skipping);
-                let b = trace_primary(&prepared, &ray, &mut testing);
+                let a = trace_primary(&prepared, &ray, &mut default);
+                let b = trace_primary(&prepared, &ray, &mut changed);
                 assert_eq!(a, b, "pixel ({x}, {y})");
             }
         }
-        let (s, t) = (&skipping.stats, &testing.stats);
+        (default.stats, changed.stats)
+    }
+
+    /// Not testing the convex surface a shadow or reflected ray leaves changes no pixel of an
+    /// SPD scene (balls-s2: mirror spheres over a floor polygon, both convex), and it saves
+    /// tests: every shadow and reflected ray from a sphere reached its own sphere.
+    #[test]
+    fn skipping_the_surface_left_changes_no_pixel_of_the_sphereflake() {
+        let (s, t) = sphereflake_pixels_agree(|ws| ws.test_the_surface_left = true);
         assert_eq!(s.shadow_rays, t.shadow_rays, "the same shadow rays");
         assert_eq!(s.shadow_blocked, t.shadow_blocked, "the same verdicts");
         let sphere = SurfaceKind::Sphere.index();
@@ -629,24 +638,7 @@ mod tests {
     /// answered by the cached blocker without a traversal.
     #[test]
     fn shadow_cache_changes_no_pixel_of_the_sphereflake() {
-        let path =
-            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/spd/balls-s2.nff");
-        let text = std::fs::read_to_string(&path).expect("scenes/spd/balls-s2.nff");
-        let scene = crate::scene::parse_nff(&text, &path).expect("valid NFF");
-        let prepared = PreparedScene::new(&scene).expect("prepared");
-        let size = 48;
-        let camera = crate::camera::Camera::new(&scene.camera, size, size);
-        let (mut cached, mut uncached) = (Workspace::new(), Workspace::new());
-        uncached.shadow_cache_off = true;
-        for y in 0..size {
-            for x in 0..size {
-                let ray = camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
-                let a = trace_primary(&prepared, &ray, &mut cached);
-                let b = trace_primary(&prepared, &ray, &mut uncached);
-                assert_eq!(a, b, "pixel ({x}, {y})");
-            }
-        }
-        let (c, u) = (&cached.stats, &uncached.stats);
+        let (c, u) = sphereflake_pixels_agree(|ws| ws.shadow_cache_off = true);
         assert_eq!(c.shadow_rays, u.shadow_rays, "the same shadow rays");
         assert_eq!(c.shadow_blocked, u.shadow_blocked, "the same verdicts");
         assert_eq!(u.shadow_cache_hits, 0, "no cache, no hit");
