@@ -257,8 +257,8 @@ impl Branch {
     }
 }
 
-/// Stam's `TraceRay` for a secondary ray (depth ≥ 2).
-/// `leaving`: as in [`nearest_hit_leaving`].
+/// Stam's `TraceRay` for a secondary ray (depth ≥ 2); `leaving` as in
+/// [`nearest_hit_leaving`].
 fn trace(
     scene: &PreparedScene,
     ray: &Ray,

@@ -116,7 +116,7 @@ pub trait Surface: Send + Sync + std::fmt::Debug {
     /// [`Surface::shading`] points out of that body. A ray that starts on such a surface and
     /// leaves it with a positive component along that normal stays in the open half-space
     /// beyond the tangent plane, which the body lies behind, so it never meets the surface
-    /// again: the tracer does not test a shadow ray against the surface it leaves
+    /// again: the tracer does not test a shadow or reflected ray against the surface it leaves
     /// (`paper-notes/bvh.md` §2). `false` unless the shape proves it.
     fn convex(&self) -> bool {
         false
