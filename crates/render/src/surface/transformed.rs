@@ -49,6 +49,13 @@ impl<S: Surface> Surface for Transformed<S> {
         self.inner.occluded(&r, t_range, ws)
     }
 
+    /// An affine image of a convex body is convex, and `G(x) = F(M⁻¹(x − b))` is negative
+    /// exactly inside it with `∇G = M⁻ᵀ∇F`: the normal [`Surface::shading`] gives below,
+    /// `M⁻ᵀn` normalised, points out of it as `n` did, whatever the sign of `det M`.
+    fn convex(&self) -> bool {
+        self.inner.convex()
+    }
+
     fn shading(&self, hit: &Hit) -> SurfaceGeometry {
         let g = self.inner.shading(hit);
         let (p, p_err) = self.world_from_object.apply_point_with_err(g.p, g.p_err);
@@ -61,5 +68,67 @@ impl<S: Surface> Surface for Transformed<S> {
             normal,
             uv: g.uv,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{DAffine3, DMat3, DVec3};
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    use super::*;
+    use crate::surface::{Implicit, Sphere};
+
+    /// A unit sphere under a map with a reflection, an uneven scale, a rotation and a shift
+    /// (an ellipsoid) is still `convex`, its shading normal points out of it, and a ray
+    /// leaving it along that normal from just outside never meets it.
+    #[test]
+    fn a_transformed_convex_surface_is_convex_with_the_outward_normal() {
+        let m = DMat3::from_rotation_z(0.7)
+            * DMat3::from_rotation_x(-0.4)
+            * DMat3::from_diagonal(DVec3::new(-1.5, 2.0, 0.5));
+        let shift = DVec3::new(3.0, -1.0, 2.0);
+        let place = Transform::new(DAffine3::from_mat3_translation(m, shift)).expect("invertible");
+        let s = Transformed::new(Implicit::new(Sphere::new(DVec3::ZERO, 1.0), None), place);
+        assert!(s.convex(), "an ellipsoid is convex");
+        let mut rng = ChaCha8Rng::seed_from_u64(8);
+        let mut ws = Workspace::new();
+        let mut rays = 0;
+        for _ in 0..3000 {
+            let q = DVec3::new(
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+            )
+            .normalize();
+            let hit = Hit {
+                t: 1.0,
+                local: q,
+                uv: None,
+                tag: 0,
+            };
+            let g = s.shading(&hit);
+            let n = g.normal.expect("a regular point");
+            // Outward: a step along n leaves the ellipsoid (the object-space point's norm grows).
+            let out = place.inverse().apply_point(g.p + n * 1e-3);
+            assert!(out.length() > 1.0, "normal {n} at {} points inwards", g.p);
+            let d = DVec3::new(
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+            );
+            if n.dot(d) <= 0.0 {
+                continue;
+            }
+            rays += 1;
+            let ray = Ray::new(g.p + n * 1e-9, d);
+            assert!(
+                !s.occluded(&ray, 0.0..f64::INFINITY, &mut ws),
+                "a ray leaving the ellipsoid at {} along {d} meets it",
+                g.p
+            );
+        }
+        assert!(rays > 1000, "{rays} rays");
     }
 }
