@@ -123,6 +123,7 @@ mod tests {
     use rand_chacha::ChaCha8Rng;
 
     use super::*;
+    use crate::surface::leaving_ray_misses;
 
     /// The fact `Surface::convex` rests on, for boxes: from a point just outside a face
     /// (where `offset_ray_origin` puts a shadow ray's origin), a ray leaving along the face's
@@ -171,22 +172,8 @@ mod tests {
                 tag: face,
             };
             assert_eq!(b.shading(&hit).normal, Some(n), "the outward normal");
-            let d = DVec3::new(
-                rng.gen_range(-1.0..1.0),
-                rng.gen_range(-1.0..1.0),
-                rng.gen_range(-1.0..1.0),
-            );
-            if n.dot(d) <= 0.0 {
-                continue;
-            }
-            rays += 1;
             let origin = p + n * (1e-9 * (1.0 + p.abs().max_element()));
-            let ray = Ray::new(origin, d);
-            assert!(
-                !b.occluded(&ray, 0.0..f64::INFINITY, &mut ws),
-                "a ray leaving face {face} of {min}..{} at {p} along {d} meets the box",
-                min + size
-            );
+            rays += usize::from(leaving_ray_misses(&b, origin, n, &mut rng, &mut ws));
         }
         assert!(rays > 1500, "{rays} rays");
     }

@@ -782,17 +782,17 @@ impl<F: ImplicitFn> Implicit<F> {
         let poly3 = self.f.poly();
         let extra = |r: f64| restriction_slack(|y| poly3.eval_abs_upper(y), &data, r);
         match self.rounded_tier(ws, &extra, range, tries, centred) {
-            Some((0, answer)) => {
-                ws.stats.surface_certification.dd_decided += 1;
-                return DdTier::Decided(answer);
+            Some((try_index, answer)) => {
+                let c = &mut ws.stats.surface_certification;
+                if try_index == 0 {
+                    c.dd_decided += 1;
+                } else {
+                    c.reduced_precision += 1;
+                }
+                DdTier::Decided(answer)
             }
-            Some((_, answer)) => {
-                ws.stats.surface_certification.reduced_precision += 1;
-                return DdTier::Decided(answer);
-            }
-            None => {}
+            None => DdTier::Undecided { kept: true },
         }
-        DdTier::Undecided { kept: true }
     }
 
     /// The second tier of a slack-limited ray: the exact restriction rounded to the nearest

@@ -143,3 +143,29 @@ impl<S: Surface + ?Sized> Surface for Box<S> {
         (**self).convex()
     }
 }
+
+/// Test support for [`Surface::convex`]: draws a direction `d` in `[−1, 1]³` and, when it
+/// leaves along the outward normal `n` (`n·d > 0`), asserts that the ray from `origin` (just
+/// outside the surface) along `d` never meets `surface`. True when a ray was tested.
+#[cfg(test)]
+pub(crate) fn leaving_ray_misses(
+    surface: &dyn Surface,
+    origin: DVec3,
+    n: DVec3,
+    rng: &mut impl rand::Rng,
+    ws: &mut Workspace,
+) -> bool {
+    let d = DVec3::new(
+        rng.gen_range(-1.0..1.0),
+        rng.gen_range(-1.0..1.0),
+        rng.gen_range(-1.0..1.0),
+    );
+    if n.dot(d) <= 0.0 {
+        return false;
+    }
+    assert!(
+        !surface.occluded(&Ray::new(origin, d), 0.0..f64::INFINITY, ws),
+        "a ray leaving {surface:?} from {origin} along {d} (normal {n}) meets it"
+    );
+    true
+}
