@@ -223,7 +223,7 @@ fn report(corpus: &Corpus, solvers: &[Method], flint: bool) {
         corpus.x_tol
     );
     println!(
-        "| solver | time / query | × polycool | wrong | poly: adaptive pieces (re-expanded in f64) / multiprecision / adaptive refines / exact fallbacks / inclusion discs decided:undecided (undecided parts) |"
+        "| solver | time / query | × polycool | wrong | poly: adaptive pieces (re-expanded in f64, of them far clusters) / multiprecision / adaptive refines / exact fallbacks / inclusion discs decided:undecided (undecided parts) |"
     );
     println!("|---|---|---|---|---|");
     for r in &rows {
@@ -260,9 +260,10 @@ fn report(corpus: &Corpus, solvers: &[Method], flint: bool) {
 
 fn stats_cell(s: &RootStats) -> String {
     format!(
-        "{} ({} re-expanded) / {} / {} / {} / {}:{} ({} parts)",
+        "{} ({} re-expanded, {} clusters) / {} / {} / {} / {}:{} ({} parts)",
         s.adaptive_pieces,
         s.shifted_pieces,
+        s.cluster_shifts,
         s.multiprecision_pieces,
         s.adaptive_refines,
         s.exact_fallbacks + s.refine_fallbacks,
@@ -426,7 +427,7 @@ fn main() {
         };
         let (wrong, stats) = run_poly_only(&corpus, profile_method());
         println!(
-            "{}: {} queries, {wrong} wrong, {} unresolved, adaptive (re-expanded) / mp / refines / exact / discs decided:undecided (undecided parts): {}",
+            "{}: {} queries, {wrong} wrong, {} unresolved, adaptive (re-expanded, clusters) / mp / refines / exact / discs decided:undecided (undecided parts): {}",
             corpus.title,
             corpus.queries.len(),
             stats.unresolved,

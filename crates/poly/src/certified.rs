@@ -30,7 +30,7 @@ use crate::eval_bound::{certified_sign, certified_sign_pair};
 use crate::exact_oracle::ExactOracle;
 use crate::multiprec::{Outcome, PieceIsolator, Tier, point_sign};
 use crate::root_interval::RootInterval;
-use crate::shifted::Shift;
+use crate::shifted::{Shift, far_centroid};
 use crate::stats::RootStats;
 use crate::stored::Slack;
 use crate::univariate::Poly;
@@ -208,7 +208,21 @@ impl<'p> CertifiedSearch<'p> {
             };
             (b, s_b) = (y, s);
         }
-        if self.range(a, b, (s_a, s_b), f64::INFINITY, stats) {
+        // Roots clustered far from 0 against their spread (a ray polynomial restricted far
+        // from its surface): the whole range re-expanded at their centroid at once.
+        let cluster = match far_centroid(c, a, b) {
+            Some(e) if !self.slack.is_some() => Shift::around_cluster(c, e, (a, b), (s_a, s_b))
+                .and_then(|(shift, signs)| self.search_shift(shift, signs, stats)),
+            _ => None,
+        };
+        let done = match cluster {
+            Some(done) => {
+                stats.cluster_shifts += 1;
+                done
+            }
+            None => self.range(a, b, (s_a, s_b), f64::INFINITY, stats),
+        };
+        if done {
             return;
         }
         if b < hi {
@@ -336,6 +350,13 @@ impl<'p> CertifiedSearch<'p> {
     /// piece goes on to [`PieceIsolator`]); else true when the search is over.
     fn shifted(&mut self, lo: f64, hi: f64, s: (i8, i8), stats: &mut RootStats) -> Option<bool> {
         let shift = Shift::new(self.c, (lo, hi))?;
+        self.search_shift(shift, s, stats)
+    }
+
+    /// The `f64` search of a re-expanded piece, with its radii as value slack and the
+    /// certified signs `s` of `p` at its ends: `None` when the search left something
+    /// undecided (then nothing of it is kept), else true when the search is over.
+    fn search_shift(&mut self, shift: Shift, s: (i8, i8), stats: &mut RootStats) -> Option<bool> {
         let (u_lo, u_hi) = shift.range;
         let slack_fn = |r: f64| shift.slack(r);
         let slack = Slack::new(&slack_fn);

@@ -38,19 +38,45 @@ const MAX_DEGREE: usize = 56;
 /// covers a binade boundary, where the spacing halves.
 const PIN_STEPS: u32 = 4;
 
-/// A piece `(lo, hi]` of the stored polynomial `p`, re-expanded at its end `at` nearer 0.
+/// [`far_centroid`] sends a query to [`Shift::around_cluster`] when `|p(e)|` at the roots'
+/// centroid `e` is at most this fraction of `Σ|cₖ||e|ᵏ`: within `2^21` of `f64`'s rounding
+/// error bound `~2n·u·Σ|cₖ||e|ᵏ` for a quartic. Values nearer the roots, smaller still, are
+/// then within a few error bounds of zero, where the search of the expansion at 0 gets stuck
+/// and its piece is re-expanded anyway. Far-eye torus rays cancel to `~10⁻¹⁶`; the torus
+/// restricted at its bounding sphere to `10⁻²` or so.
+const FAR_CLUSTER_CANCELLATION: f64 = 1.0 / 4_294_967_296.0;
+
+/// [`far_centroid`]'s first test: `|Σdᵢ²|`, the sum of the roots' squared offsets from their
+/// centroid `e` (as far as the coefficients show it), is at most this fraction of
+/// `n(n−1)e²`: an rms offset within about `√((n−1)/256)·|e|`, `0.11|e|` for a quartic. The
+/// cancellation test that follows needs offsets near `2⁻⁸|e|` for a quartic, so this only
+/// spares the Horner pass to queries whose roots spread as far as they lie from 0, as the
+/// renderer's do.
+const FAR_CLUSTER_SPREAD: f64 = 1.0 / 256.0;
+
+/// Widens Fujiwara's root radius in [`cluster_radius`] so that its Cauchy inequality holds
+/// strictly with room for the rounding (which is `~n·u`, far below this): the radius only
+/// has to bound the roots, and 1.6 % wider costs nothing measurable.
+const FUJIWARA_MARGIN: f64 = 1.015625;
+
+/// A piece `(lo, hi]` of the stored polynomial `p`, re-expanded at its end `at` nearer 0
+/// ([`Shift::new`]) or at the centroid of a far cluster of roots ([`Shift::around_cluster`]).
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Shift {
-    /// The expansion point `e`: an end of the piece.
+    /// The expansion point `e`: an end of the piece, or a point inside it with every `|u|`
+    /// of the piece at most `|e|/2` (so, as from the end nearer 0, `|u| ≤ |t|`).
     pub(crate) at: f64,
-    /// The piece in the shifted variable `u = t − e`: `(0, hi − lo]` or `(lo − hi, 0]`,
-    /// exact.
+    /// The piece in the shifted variable `u = t − e`: `(0, hi − lo]` or `(lo − hi, 0]`, or
+    /// around 0 for a cluster; the roots of `p` in it are those of the query's range.
     pub(crate) range: (f64, f64),
     /// `q̂`: the coefficients of `p(e + u)`, rounded to `f64` (lowest first).
-    pub(crate) q: SmallVec<[f64; 8]>,
+    pub(crate) q: Coeffs,
     /// `ρⱼ ≥ |qⱼ − q̂ⱼ|`, `qⱼ` the exact coefficients of the stored `p(e + u)`.
-    radii: SmallVec<[f64; 8]>,
+    radii: Coeffs,
 }
+
+/// Coefficients or their radii, lowest first (inline up to degree 7).
+type Coeffs = SmallVec<[f64; 8]>;
 
 impl Shift {
     /// The shift of the piece `(lo, hi]` of `c` (finite ends on one side of 0, the end nearer
@@ -77,37 +103,7 @@ impl Shift {
         if w_err != 0.0 {
             return None;
         }
-        let mut v: SmallVec<[Dd; 8]> = SmallVec::from_elem(Dd::ZERO, n + 1);
-        taylor_shift_into(c, at, &mut v);
-        // The shift of |c| by |e| in f64 (non-negative operands: each of its 2n roundings
-        // per path is relative u downwards at most, so (1 + γ(2n)) makes it an upper bound),
-        // times γ_dd(2n), bounds the double-double shift's error per coefficient.
-        let mut a: SmallVec<[f64; 8]> = SmallVec::from_elem(0.0, n + 1);
-        let e = at.abs();
-        a[0] = c[n].abs();
-        for k in (0..n).rev() {
-            for i in (1..=n - k).rev() {
-                a[i] = a[i] * e + a[i - 1];
-            }
-            a[0] = a[0] * e + c[k].abs();
-        }
-        let gamma_f = gamma_u(2 * n, 0.5 * f64::EPSILON);
-        let gamma_dd = gamma_u(2 * n, DD_UNIT);
-        // Underflow: at most DD_UNDERFLOW per operation, each amplified by at most (1 + |e|)
-        // per remaining Horner step; at most (n + 1)² operations feed a coefficient.
-        let tiny = DD_UNDERFLOW * (1.0 + e).powi(n as i32) * ((n + 1) * (n + 1)) as f64;
-        let mut q = SmallVec::with_capacity(n + 1);
-        let mut radii = SmallVec::with_capacity(n + 1);
-        for (vj, aj) in v.iter().zip(&a) {
-            // Rounding the double-double to its high part errs by exactly |lo|.
-            let r =
-                (vj.lo.abs() + gamma_dd * aj * (1.0 + gamma_f) + tiny) * (1.0 + 4.0 * f64::EPSILON);
-            if !(vj.hi.is_finite() && r.is_finite()) {
-                return None;
-            }
-            q.push(vj.hi);
-            radii.push(r);
-        }
+        let (q, radii) = expand(c, at)?;
         // w = other − e: positive from lo, negative from hi.
         let range = if at == lo { (0.0, w) } else { (w, 0.0) };
         Some(Shift {
@@ -116,6 +112,67 @@ impl Shift {
             q,
             radii,
         })
+    }
+
+    /// The far-cluster re-expansion of a whole query range `(lo, hi]` (finite, certified
+    /// non-zero end signs `s`) at `e` = [`far_centroid`]`(c, lo, hi)`: a radius `r` with
+    /// every complex root within `r` of `e` is certified for the exact `p(e + u)`
+    /// ([`cluster_radius`]), and the piece becomes `(lo, hi] ∩ (e − r, e + r)` in `u` —
+    /// everything outside holds no root. Returns the shift and the certified signs of `p` at
+    /// its ends in `u`, or `None` when this does not apply (a cluster wider than `|e|/2`, an
+    /// end `lo − e` or `hi − e` inside the cluster that is not exact in `f64`, overflow).
+    ///
+    /// Why: a ray polynomial restricted 10⁴ units from a torus has its four roots, complex
+    /// ones included, within a few units of the ray's closest approach to the torus's
+    /// centre, which is `e`. The `f64` search of the expansion at 0 can only close in on them
+    /// until its error bound swamps the values, and the piece it is stuck on is re-expanded
+    /// anyway; this skips that search (`paper-notes/isolation.md`, "Far clusters").
+    #[inline(never)]
+    pub(crate) fn around_cluster(
+        c: &[f64],
+        e: f64,
+        (lo, hi): (f64, f64),
+        (s_lo, s_hi): (i8, i8),
+    ) -> Option<(Shift, (i8, i8))> {
+        let n = c.len() - 1;
+        let (q, radii) = expand(c, e)?;
+        let r = cluster_radius(&q, &radii)?;
+        if r > 0.5 * e.abs() {
+            return None;
+        }
+        // Signs of p(e + u) beyond the cluster: that of the leading coefficient to the
+        // right, times (−1)ⁿ to the left.
+        let s_right: i8 = if c[n] > 0.0 { 1 } else { -1 };
+        let s_left = if n.is_multiple_of(2) {
+            s_right
+        } else {
+            -s_right
+        };
+        // An end outside the cluster is replaced by the cluster's edge. (Rounding is
+        // monotone: a rounded `lo − e` below the `f64` number −r means the exact one is.)
+        let (d_lo, d_lo_err) = two_sum(lo, -e);
+        let (u_lo, su_lo) = if d_lo < -r {
+            (-r, s_left)
+        } else if d_lo_err == 0.0 {
+            (d_lo, s_lo)
+        } else {
+            return None;
+        };
+        let (d_hi, d_hi_err) = two_sum(hi, -e);
+        let (u_hi, su_hi) = if d_hi > r {
+            (r, s_right)
+        } else if d_hi_err == 0.0 {
+            (d_hi, s_hi)
+        } else {
+            return None;
+        };
+        let shift = Shift {
+            at: e,
+            range: (u_lo, u_hi),
+            q,
+            radii,
+        };
+        Some((shift, (su_lo, su_hi)))
     }
 
     /// `Σρⱼrʲ` rounded up: a bound on `|p(e + u) − q̂(u)|` for every `|u| ≤ r`.
@@ -190,6 +247,121 @@ impl Shift {
         stats.refine_fallbacks += 1;
         p.with_poly(|p| refine_exact_offset(p, self.at, stuck, tol))
     }
+}
+
+/// The centroid `e = −c_{n−1}/(n·c_n)` of the roots of `c` (complex ones included) when it
+/// lies in `(lo, hi)` and the values there cancel to [`FAR_CLUSTER_CANCELLATION`] of
+/// `Σ|cₖ||e|ᵏ` — roots clustered far from 0 against their spread — for
+/// [`Shift::around_cluster`]; else `None`. Degrees `3..=MAX_DEGREE` (lower ones have closed
+/// forms). One Horner pass: every query of the certified search asks.
+#[inline]
+pub(crate) fn far_centroid(c: &[f64], lo: f64, hi: f64) -> Option<f64> {
+    let n = c.len().wrapping_sub(1);
+    if !(3..=MAX_DEGREE).contains(&n) {
+        return None;
+    }
+    // First, cheaply: with dᵢ the roots' offsets from e, Σdᵢ² = n(n−1)e² − 2c_{n−2}/c_n,
+    // which is ((n−1)c²_{n−1} − 2n·c_{n−2}c_n)/(n·c_n²); |Σdᵢ²| ≤ Σ|dᵢ|², so a sum far from
+    // 0 against n(n−1)e² rules a tight cluster out (complex offsets can cancel in it, hence
+    // the Horner test after). No division until it passes.
+    let (a, b, lead) = (c[n - 1], c[n - 2], c[n]);
+    let m = (n - 1) as f64 * a * a;
+    // (NaN from an overflow passes on to the Horner test, which refuses it.)
+    if (m - 2.0 * n as f64 * b * lead).abs() > FAR_CLUSTER_SPREAD * m {
+        return None;
+    }
+    let e = -a / (n as f64 * lead);
+    // (Also false for NaN.)
+    if !(e > lo && e < hi) {
+        return None;
+    }
+    let ae = e.abs();
+    let (mut v, mut s) = (0.0f64, 0.0f64);
+    for &ck in c.iter().rev() {
+        v = v * e + ck;
+        s = s * ae + ck.abs();
+    }
+    (v.abs() <= FAR_CLUSTER_CANCELLATION * s).then_some(e)
+}
+
+/// `q̂`, the coefficients of `p(e + u)` for the stored `c` computed in double-double and
+/// rounded to `f64`, and their radii `ρⱼ ≥ |qⱼ − q̂ⱼ|`; `None` when something overflows.
+fn expand(c: &[f64], at: f64) -> Option<(Coeffs, Coeffs)> {
+    let n = c.len() - 1;
+    let mut v: SmallVec<[Dd; 8]> = SmallVec::from_elem(Dd::ZERO, n + 1);
+    taylor_shift_into(c, at, &mut v);
+    // The shift of |c| by |e| in f64 (non-negative operands: each of its 2n roundings
+    // per path is relative u downwards at most, so (1 + γ(2n)) makes it an upper bound),
+    // times γ_dd(2n), bounds the double-double shift's error per coefficient.
+    let mut a: SmallVec<[f64; 8]> = SmallVec::from_elem(0.0, n + 1);
+    let e = at.abs();
+    a[0] = c[n].abs();
+    for k in (0..n).rev() {
+        for i in (1..=n - k).rev() {
+            a[i] = a[i] * e + a[i - 1];
+        }
+        a[0] = a[0] * e + c[k].abs();
+    }
+    let gamma_f = gamma_u(2 * n, 0.5 * f64::EPSILON);
+    let gamma_dd = gamma_u(2 * n, DD_UNIT);
+    // Underflow: at most DD_UNDERFLOW per operation, each amplified by at most (1 + |e|)
+    // per remaining Horner step; at most (n + 1)² operations feed a coefficient.
+    let tiny = DD_UNDERFLOW * (1.0 + e).powi(n as i32) * ((n + 1) * (n + 1)) as f64;
+    let mut q = SmallVec::with_capacity(n + 1);
+    let mut radii = SmallVec::with_capacity(n + 1);
+    for (vj, aj) in v.iter().zip(&a) {
+        // Rounding the double-double to its high part errs by exactly |lo|.
+        let r = (vj.lo.abs() + gamma_dd * aj * (1.0 + gamma_f) + tiny) * (1.0 + 4.0 * f64::EPSILON);
+        if !(vj.hi.is_finite() && r.is_finite()) {
+            return None;
+        }
+        q.push(vj.hi);
+        radii.push(r);
+    }
+    Some((q, radii))
+}
+
+/// A radius `r` (an `f64`) with every complex root of the exact `q` (coefficients within
+/// `radii` of `q̂`) strictly within `r` of 0, or `None` when the leading coefficient is not
+/// certainly non-zero or something overflows.
+///
+/// With `Bⱼ = |q̂ⱼ| + ρⱼ` and `L = |q̂ₙ| − ρₙ > 0`, every root `u` has `L|u|ⁿ ≤ Σⱼ₍ⱼ<ₙ₎ Bⱼ|u|ʲ`,
+/// so a radius where `L·rⁿ > Σ Bⱼrʲ` (checked with the rounding of both sides bounded) has
+/// every root inside (Cauchy: the difference has one positive zero and grows past it).
+/// Fujiwara's bound `2·max((B_{n−k}/L)^{1/k}, (B₀/2L)^{1/n})` meets the inequality, not
+/// strictly at worst; [`FUJIWARA_MARGIN`] makes it strict.
+fn cluster_radius(q: &[f64], radii: &[f64]) -> Option<f64> {
+    let n = q.len() - 1;
+    let lead = q[n].abs() - radii[n];
+    if lead <= 0.0 {
+        return None;
+    }
+    let b = |j: usize| q[j].abs() + radii[j];
+    let mut m = 0.0f64;
+    for k in 1..=n {
+        let ratio = if k == n { 0.5 * b(0) } else { b(n - k) } / lead;
+        // (Roots by `sqrt` and `cbrt` where they serve: `powf` costs ten times more.)
+        let root = match k {
+            1 => ratio,
+            2 => ratio.sqrt(),
+            3 => ratio.cbrt(),
+            4 => ratio.sqrt().sqrt(),
+            6 => ratio.cbrt().sqrt(),
+            8 => ratio.sqrt().sqrt().sqrt(),
+            _ => ratio.powf(1.0 / k as f64),
+        };
+        m = m.max(root);
+    }
+    let r = 2.0 * m * FUJIWARA_MARGIN;
+    // Σ_{j<n} B_j r^j and L·r^n, each of at most 2n non-negative roundings.
+    let mut s = 0.0;
+    for j in (0..n).rev() {
+        s = s * r + b(j);
+    }
+    let g = gamma_u(2 * n + 2, 0.5 * f64::EPSILON);
+    let upper = s * (1.0 + 2.0 * g);
+    let lower = lead * r.powi(n as i32) * (1.0 - 2.0 * g);
+    (r.is_finite() && lower > upper).then_some(r)
 }
 
 /// `a + b` rounded down (the exact sum's error term tells the direction).
@@ -342,6 +514,10 @@ mod tests {
             let first = q.smallest_root_with(lo, hi, &opts, &mut stats).unwrap();
             assert!((first - want[0]).abs() <= 1e-9, "{sign}: smallest {first}");
             assert!(stats.shifted_pieces >= 1, "{sign}: re-expanded: {stats:?}");
+            assert_eq!(
+                stats.cluster_shifts, 2,
+                "{sign}: both queries went to the centroid at once: {stats:?}"
+            );
             assert_eq!(stats.multiprecision_pieces, 0, "{sign}: {stats:?}");
             assert_eq!(
                 stats.exact_fallbacks + stats.refine_fallbacks,
@@ -349,5 +525,195 @@ mod tests {
                 "{sign}: {stats:?}"
             );
         }
+    }
+
+    /// The exact sign of the stored `c` at `e + u` (both `f64`, summed exactly).
+    fn exact_sign_at(c: &[f64], e: f64, u: f64) -> i8 {
+        let x = rat_from_f64(e).unwrap() + rat_from_f64(u).unwrap();
+        let mut v = crate::scalar::Rat::from_integer(0.into());
+        for &ck in c.iter().rev() {
+            v = v * &x + rat_from_f64(ck).unwrap();
+        }
+        match v.cmp(&crate::scalar::Rat::from_integer(0.into())) {
+            std::cmp::Ordering::Less => -1,
+            std::cmp::Ordering::Equal => 0,
+            std::cmp::Ordering::Greater => 1,
+        }
+    }
+
+    #[test]
+    fn a_far_cluster_piece_holds_every_root_with_certified_end_signs() {
+        // Ray-like polynomials whose roots (complex pairs included) cluster far from 0, on
+        // ranges that start at 0 and end past, or inside, the cluster: the piece kept holds
+        // every stored root of the range, its end signs are the exact ones, and it is no
+        // wider than a few spreads of the cluster (Fujiwara's radius is within 2n of it).
+        let pair = |m: f64, im: f64| vec![m * m + im * im, -2.0 * m, 1.0];
+        let cases: Vec<(Vec<f64>, f64, f64)> = vec![
+            // Two real roots and a pair near 10⁴, as a torus seen from 10⁴ units.
+            (
+                product(
+                    planted_f64(&[9998.125, 9999.5]).coeffs(),
+                    &pair(10001.0, 0.5),
+                ),
+                0.0,
+                10004.0,
+            ),
+            // The range ends inside the cluster, past its centroid 9999.906.
+            (
+                product(
+                    planted_f64(&[9998.125, 9999.5]).coeffs(),
+                    &pair(10001.0, 0.5),
+                ),
+                0.0,
+                9999.9375,
+            ),
+            // No real root: two pairs.
+            (product(&pair(1e4, 1.5), &pair(1e4 + 1.0, 0.25)), 0.0, 1.1e4),
+            // Mirrored: the cluster on the negative side.
+            (
+                planted_f64(&[-8000.0, -7998.0, -7997.5, -7994.0])
+                    .coeffs()
+                    .to_vec(),
+                -2e4,
+                0.0,
+            ),
+            // Odd degree: the signs left and right of the cluster differ.
+            (
+                product(
+                    planted_f64(&[2999.0, 3000.0, 3001.5]).coeffs(),
+                    &pair(3000.25, 1.0),
+                ),
+                0.0,
+                3100.0,
+            ),
+            // Degree 6, odd leading sign, an end inside the cluster.
+            (
+                product(
+                    planted_f64(&[4999.0, 5000.0, 5001.5, 5002.0]).coeffs(),
+                    &pair(5000.5, 2.0),
+                )
+                .iter()
+                .map(|x| -x)
+                .collect(),
+                4000.0,
+                5001.75,
+            ),
+        ];
+        for (c, lo, hi) in cases {
+            let p = Poly::new(c.clone());
+            let want = stored_roots(&p, lo, hi);
+            let s_lo = exact_sign_at(&c, lo, 0.0);
+            let s_hi = exact_sign_at(&c, hi, 0.0);
+            let e = far_centroid(&c, lo, hi)
+                .unwrap_or_else(|| panic!("a far cluster: {c:?} on ({lo}, {hi}]"));
+            let (shift, (su_lo, su_hi)) =
+                Shift::around_cluster(&c, e, (lo, hi), (s_lo, s_hi)).expect("applies");
+            let (u_lo, u_hi) = shift.range;
+            assert_eq!(shift.at, e);
+            for r in &want {
+                assert!(
+                    *r > e + u_lo - 1e-9 && *r <= e + u_hi + 1e-9,
+                    "root {r} outside ({}, {}]",
+                    e + u_lo,
+                    e + u_hi
+                );
+            }
+            assert_eq!(su_lo, exact_sign_at(&c, e, u_lo), "sign at the lower end");
+            assert_eq!(su_hi, exact_sign_at(&c, e, u_hi), "sign at the upper end");
+            assert!(
+                u_hi - u_lo <= 60.0,
+                "{c:?}: piece ({u_lo}, {u_hi}] is not vacuous"
+            );
+            // And the queries answer from it alike.
+            let mut stats = RootStats::default();
+            let opts = RootOptions::new(1e-9);
+            let got = p.real_roots_with(lo, hi, &opts, &mut stats).unwrap();
+            assert_eq!(got.len(), want.len(), "{got:?} vs {want:?}");
+            for (g, w) in got.iter().zip(&want) {
+                assert!((g - w).abs() <= 1e-9, "{g} vs {w}");
+            }
+            let first = p.smallest_root_with(lo, hi, &opts, &mut stats);
+            assert_eq!(first.is_some(), !want.is_empty());
+            assert!(stats.cluster_shifts >= 1, "{stats:?}");
+        }
+    }
+
+    #[test]
+    fn spread_roots_are_not_taken_for_a_far_cluster() {
+        // The renderer's queries (roots spread as far as they lie from 0), a cluster with an
+        // outlier near 0, and a cluster outside the range: no centroid is offered.
+        let cases = [
+            (planted_f64(&[0.5, 1.5, 2.5, 4.0]), 0.0, 6.0),
+            (planted_f64(&[1.0, 9999.0, 10000.0, 10001.0]), 0.0, 10005.0),
+            (
+                planted_f64(&[9999.0, 10000.0, 10001.0, 10002.0]),
+                0.0,
+                9000.0,
+            ),
+            (planted_f64(&[9999.0, 10000.0]), 0.0, 10005.0),
+        ];
+        for (p, lo, hi) in cases {
+            assert_eq!(far_centroid(p.coeffs(), lo, hi), None, "{p:?}");
+        }
+    }
+
+    #[test]
+    fn random_far_clusters_answer_as_the_exact_oracle() {
+        // Clusters of real roots and complex pairs (spread up to 8) at centres from 10² to
+        // 10⁵ on either side of 0, degrees 3 to 8, searched on ranges that reach from the
+        // near side of 0 to past the cluster or into it: every root of the stored polynomial
+        // (coefficients rounded by the product) is found, within the tolerance, as the exact
+        // Sturm oracle has them.
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(13);
+        let mut clustered = 0;
+        for case in 0..300 {
+            let side = if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
+            let centre = side * 10f64.powf(rng.gen_range(2.0..5.0));
+            let spread = rng.gen_range(0.01..8.0);
+            let degree = rng.gen_range(3..=8);
+            let mut c = vec![1.0];
+            let mut left = degree;
+            while left > 0 {
+                let m = centre + spread * rng.gen_range(-1.0..1.0);
+                if left >= 2 && rng.gen_bool(0.4) {
+                    let im: f64 = spread * rng.gen_range(0.0..1.0);
+                    c = product(&c, &[m * m + im * im, -2.0 * m, 1.0]);
+                    left -= 2;
+                } else {
+                    c = product(&c, &[-m, 1.0]);
+                    left -= 1;
+                }
+            }
+            let far = centre + side * spread * rng.gen_range(-1.0..3.0);
+            let (lo, hi) = if side > 0.0 { (0.0, far) } else { (far, 0.0) };
+            let p = Poly::new(c.clone());
+            let want = stored_roots(&p, lo, hi);
+            let mut stats = RootStats::default();
+            let opts = RootOptions::new(1e-9);
+            let got = p.real_roots_with(lo, hi, &opts, &mut stats).unwrap();
+            assert_eq!(
+                got.len(),
+                want.len(),
+                "case {case}: {c:?} on ({lo}, {hi}]: {got:?} vs {want:?}"
+            );
+            for (g, w) in got.iter().zip(&want) {
+                assert!((g - w).abs() <= 1e-9 * 1.01, "case {case}: {g} vs {w}");
+            }
+            let first = p.smallest_root_with(lo, hi, &opts, &mut stats);
+            match (first, want.first()) {
+                (Some(g), Some(w)) => assert!(
+                    (g - w).abs() <= 1e-9 * 1.01,
+                    "case {case}: first {g} vs {w}"
+                ),
+                (None, None) => {}
+                (g, w) => panic!("case {case}: first {g:?} vs {w:?}"),
+            }
+            clustered += usize::from(stats.cluster_shifts > 0);
+        }
+        assert!(
+            clustered >= 100,
+            "the centroid path was taken in {clustered} cases only"
+        );
     }
 }

@@ -57,6 +57,11 @@ pub struct RootStats {
     /// double-double re-expansion at the piece's end (`paper-notes/isolation.md`, "Shifted
     /// `f64` tier"), with no double-double subdivision.
     pub shifted_pieces: u64,
+    /// Of the [`shifted_pieces`](Self::shifted_pieces), whole query ranges re-expanded at
+    /// the centroid of a cluster of roots far from 0 against its spread, before any `f64`
+    /// run (a ray polynomial restricted far from its surface; `paper-notes/isolation.md`,
+    /// "Far clusters").
+    pub cluster_shifts: u64,
     /// Of the [`adaptive_pieces`](Self::adaptive_pieces), those that needed more than
     /// double-double precision somewhere.
     pub multiprecision_pieces: u64,
@@ -101,6 +106,7 @@ impl RootStats {
         self.refine_fallbacks += other.refine_fallbacks;
         self.adaptive_pieces += other.adaptive_pieces;
         self.shifted_pieces += other.shifted_pieces;
+        self.cluster_shifts += other.cluster_shifts;
         self.multiprecision_pieces += other.multiprecision_pieces;
         self.adaptive_refines += other.adaptive_refines;
         self.slack_limited += other.slack_limited;
@@ -173,6 +179,7 @@ mod tests {
         a.inclusion_decided = 5;
         a.inclusion_undecided = 6;
         a.shifted_pieces = 2;
+        a.cluster_shifts = 3;
         a.inclusion_subranges = 8;
         let mut b = a.clone();
         b.subdivisions = 7;
@@ -200,6 +207,7 @@ mod tests {
             "adaptive counters kept"
         );
         assert_eq!(b.shifted_pieces, 4, "shifted pieces summed");
+        assert_eq!(b.cluster_shifts, 6, "cluster shifts summed");
         assert_eq!(
             (
                 b.inclusion_decided,

@@ -477,6 +477,11 @@ impl fmt::Display for StatsReport<'_> {
         )?;
         writeln!(
             f,
+            "      whole ranges at a far cluster  {:>12}",
+            r.cluster_shifts
+        )?;
+        writeln!(
+            f,
             "    beyond double-double             {:>12}",
             r.multiprecision_pieces
         )?;
