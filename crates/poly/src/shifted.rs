@@ -288,12 +288,16 @@ pub(crate) fn far_centroid(c: &[f64], lo: f64, hi: f64) -> Option<f64> {
 /// rounded to `f64`, and their radii `ρⱼ ≥ |qⱼ − q̂ⱼ|`; `None` when something overflows.
 fn expand(c: &[f64], at: f64) -> Option<(Coeffs, Coeffs)> {
     let n = c.len() - 1;
+    // (Plain slices of the small vectors in the loops: indexing a `SmallVec` checks where
+    // it lives on every access, a third of this function's instructions on quartics.)
     let mut v: SmallVec<[Dd; 8]> = SmallVec::from_elem(Dd::ZERO, n + 1);
-    taylor_shift_into(c, at, &mut v);
+    let v = v.as_mut_slice();
+    taylor_shift_into(c, at, v);
     // The shift of |c| by |e| in f64 (non-negative operands: each of its 2n roundings
     // per path is relative u downwards at most, so (1 + γ(2n)) makes it an upper bound),
     // times γ_dd(2n), bounds the double-double shift's error per coefficient.
-    let mut a: SmallVec<[f64; 8]> = SmallVec::from_elem(0.0, n + 1);
+    let mut a: Coeffs = SmallVec::from_elem(0.0, n + 1);
+    let a = a.as_mut_slice();
     let e = at.abs();
     a[0] = c[n].abs();
     for k in (0..n).rev() {
@@ -307,18 +311,22 @@ fn expand(c: &[f64], at: f64) -> Option<(Coeffs, Coeffs)> {
     // Underflow: at most DD_UNDERFLOW per operation, each amplified by at most (1 + |e|)
     // per remaining Horner step; at most (n + 1)² operations feed a coefficient.
     let tiny = DD_UNDERFLOW * (1.0 + e).powi(n as i32) * ((n + 1) * (n + 1)) as f64;
-    let mut q = SmallVec::with_capacity(n + 1);
-    let mut radii = SmallVec::with_capacity(n + 1);
-    for (vj, aj) in v.iter().zip(&a) {
+    let mut q: Coeffs = SmallVec::from_elem(0.0, n + 1);
+    let mut radii: Coeffs = SmallVec::from_elem(0.0, n + 1);
+    let mut finite = true;
+    for (((vj, aj), qj), rj) in v
+        .iter()
+        .zip(&*a)
+        .zip(q.as_mut_slice())
+        .zip(radii.as_mut_slice())
+    {
         // Rounding the double-double to its high part errs by exactly |lo|.
         let r = (vj.lo.abs() + gamma_dd * aj * (1.0 + gamma_f) + tiny) * (1.0 + 4.0 * f64::EPSILON);
-        if !(vj.hi.is_finite() && r.is_finite()) {
-            return None;
-        }
-        q.push(vj.hi);
-        radii.push(r);
+        finite &= vj.hi.is_finite() && r.is_finite();
+        *qj = vj.hi;
+        *rj = r;
     }
-    Some((q, radii))
+    finite.then_some((q, radii))
 }
 
 /// A radius `r` (an `f64`) with every complex root of the exact `q` (coefficients within
