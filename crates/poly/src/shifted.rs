@@ -27,6 +27,7 @@ use crate::root_interval::RootInterval;
 use crate::root_options::{RefineMethod, Tolerance};
 use crate::stats::RootStats;
 use crate::stored::Stored;
+use crate::univariate::ETA;
 
 /// Highest degree shifted: the double-double shift costs `n²/2` products, and above this
 /// the per-node tiers of `multiprec.rs` are no dearer (the same bound as `dd_bernstein.rs`).
@@ -361,14 +362,16 @@ fn cluster_radius(q: &[f64], radii: &[f64]) -> Option<f64> {
         m = m.max(root);
     }
     let r = 2.0 * m * FUJIWARA_MARGIN;
-    // Σ_{j<n} B_j r^j and L·r^n, each of at most 2n non-negative roundings.
+    // Σ_{j<n} B_j r^j and L·r^n, each of at most 2n non-negative roundings (`powi`
+    // multiplies at most 2·log₂n + 1 times).
     let mut s = 0.0;
     for j in (0..n).rev() {
         s = s * r + b(j);
     }
     let g = gamma_u(2 * n + 2, 0.5 * f64::EPSILON);
-    let upper = s * (1.0 + 2.0 * g);
-    let lower = lead * r.powi(n as i32) * (1.0 - 2.0 * g);
+    // (Each of those operations may also err by up to ETA in underflow, either way.)
+    let upper = s * (1.0 + 2.0 * g) + (2 * n) as f64 * ETA;
+    let lower = lead * r.powi(n as i32) * (1.0 - 2.0 * g) - (2 * n) as f64 * ETA;
     (r.is_finite() && lower > upper).then_some(r)
 }
 
@@ -723,5 +726,31 @@ mod tests {
             clustered >= 100,
             "the centroid path was taken in {clustered} cases only"
         );
+    }
+
+    #[test]
+    fn clusters_at_extreme_scales_answer_as_the_exact_oracle() {
+        // Where the radius test's sums underflow (10⁻⁸⁰: rⁿ near 10⁻³²⁰) or the coefficients
+        // near overflow (10⁷⁰), whichever path the query takes, its roots are the stored ones.
+        for scale in [1e-80, 1e-40, 1e40, 1e70] {
+            let p = planted_f64(&[scale, 1.001 * scale, 1.002 * scale, 1.004 * scale]);
+            let (lo, hi) = (0.0, 2.0 * scale);
+            let want = stored_roots(&p, lo, hi);
+            let mut stats = RootStats::default();
+            let opts = RootOptions::new(1e-6 * scale);
+            let got = p.real_roots_with(lo, hi, &opts, &mut stats).unwrap();
+            assert_eq!(got.len(), want.len(), "{scale}: {got:?} vs {want:?}");
+            for (g, w) in got.iter().zip(&want) {
+                assert!((g - w).abs() <= 1.01e-6 * scale, "{scale}: {g} vs {w}");
+            }
+            let first = p.smallest_root_with(lo, hi, &opts, &mut stats);
+            assert_eq!(first.is_some(), !want.is_empty(), "{scale}");
+            if let (Some(g), Some(w)) = (first, want.first()) {
+                assert!(
+                    (g - w).abs() <= 1.01e-6 * scale,
+                    "{scale}: first {g} vs {w}"
+                );
+            }
+        }
     }
 }

@@ -8,7 +8,9 @@
 
 use num_bigint::BigInt;
 
+use crate::root_interval::RootInterval;
 use crate::scalar::{Rat, rat_from_f64, rat_to_f64};
+use crate::sturm::SturmSequence;
 use crate::univariate::{Poly, QPoly};
 
 /// `n/d` as a rational. Panics if `d == 0` (a caller bug).
@@ -91,13 +93,49 @@ pub fn stored_roots(p: &Poly<f64>, lo: f64, hi: f64) -> Vec<f64> {
     q.isolate_roots(&a, &b)
         .expect("finite ends")
         .iter()
-        .map(|iv| rat_to_f64(&seq.refine_interval(iv, 80).lo))
+        .map(|iv| rat_to_f64(&refined_relative(&seq, iv).lo))
         .collect()
+}
+
+/// `iv` refined to within `2⁻⁶⁰` of its root *relatively* (or to a point): 80 bits absolute
+/// first, then 64 more at a time while the interval still reaches 0 or is wider than that.
+/// (Refining to 80 bits absolute alone returned 0 for the root 9.0e-81.)
+fn refined_relative(seq: &SturmSequence<Rat>, iv: &RootInterval<Rat>) -> RootInterval<Rat> {
+    let zero = Rat::from_integer(0.into());
+    let mut bits = 80;
+    loop {
+        let r = seq.refine_interval(iv, bits);
+        let same_side = (r.lo > zero && r.hi > zero) || (r.lo < zero && r.hi < zero);
+        let tight = r.lo == r.hi
+            || (same_side && {
+                let scale = if r.lo > zero {
+                    r.lo.clone()
+                } else {
+                    -r.hi.clone()
+                };
+                (&r.hi - &r.lo) * Rat::from_integer((1i64 << 60).into()) <= scale
+            });
+        if tight || bits >= 1200 {
+            return r;
+        }
+        bits += 64;
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn stored_roots_are_accurate_relatively_for_tiny_roots() {
+        // Regression: refined to 80 bits absolute only, the oracle returned 0 for a root near
+        // 9e-81 (found by a far-cluster test at scale 1e-80), and a correct answer was
+        // reported as wrong.
+        let p = Poly::new(vec![9e-81, -1.0, 1.0]); // roots ≈ 9e-81 and ≈ 1
+        let r = stored_roots(&p, 0.0, 0.5);
+        assert_eq!(r.len(), 1);
+        assert!((r[0] - 9e-81).abs() <= 1e-12 * 9e-81, "{r:?}");
+    }
 
     #[test]
     fn constructors_have_the_planted_roots() {
