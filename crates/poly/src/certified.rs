@@ -210,10 +210,15 @@ impl<'p> CertifiedSearch<'p> {
         }
         // Roots clustered far from 0 against their spread (a ray polynomial restricted far
         // from its surface): the whole range re-expanded at their centroid at once.
-        let cluster = match far_centroid(c, a, b) {
-            Some(e) if !self.slack.is_some() => Shift::around_cluster(c, e, (a, b), (s_a, s_b))
-                .and_then(|(shift, signs)| self.search_shift(shift, signs, stats)),
-            _ => None,
+        // (Not with a slack: the stored polynomial is not the true one, and a re-expansion
+        // would not make it so; that also skips the test in the shifted sub-searches.)
+        let cluster = if self.slack.is_some() {
+            None
+        } else {
+            far_centroid(c, a, b).and_then(|e| {
+                let (shift, signs) = Shift::around_cluster(c, e, (a, b), (s_a, s_b))?;
+                self.search_shift(shift, signs, stats)
+            })
         };
         let done = match cluster {
             Some(done) => {
