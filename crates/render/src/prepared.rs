@@ -17,13 +17,17 @@ use crate::surface::{
 #[derive(Debug)]
 pub struct PreparedScene {
     /// The objects' geometry, in world space: object `i` is `surfaces[i]` lit by
-    /// `materials[i]` (Surface + Material = Object, STYLE.md §6). Two arrays, not one of
-    /// pairs: a ray's item tests reach only the surfaces, and a dense array of them
-    /// (16 bytes an object) stays in cache where one with the materials (136 bytes an object)
-    /// missed it on every test of the 66 430-sphere scene (issue 12).
+    /// [`material(i)`](Self::material) (Surface + Material = Object, STYLE.md §6). Separate
+    /// arrays, not one of pairs: a ray's item tests reach only the surfaces, and a dense array
+    /// of them (16 bytes an object) stays in cache where one with the materials (136 bytes an
+    /// object) missed it on every test of the 66 430-sphere scene (issue 12).
     pub surfaces: Vec<Box<dyn Surface>>,
-    /// How each object is lit.
+    /// The distinct materials, as [`material_of`](Self::material_of) indexes them.
     pub materials: Vec<Material>,
+    /// Object `i`'s index into [`materials`](Self::materials). Objects in a row with equal
+    /// materials share one entry (an NFF `f` line lights every object after it): balls-s5's
+    /// 66 430 spheres have 3, and a copy per object was 8 MB of its peak memory (issue 12).
+    pub material_of: Vec<u32>,
     /// The lights.
     pub lights: Vec<Light>,
     /// World settings.
@@ -70,7 +74,8 @@ impl PreparedScene {
             patch_method,
         };
         let mut surfaces = Vec::with_capacity(scene.objects.len());
-        let mut materials = Vec::with_capacity(scene.objects.len());
+        let mut materials: Vec<Material> = Vec::new();
+        let mut material_of = Vec::with_capacity(scene.objects.len());
         for (index, object) in scene.objects.iter().enumerate() {
             let bad = |error| SceneInvalid::Object { index, error };
             // The builder checked the same placement where the keys have places.
@@ -79,17 +84,32 @@ impl PreparedScene {
                 crate::scene::InvalidModel::new("Type", "has degenerate geometry"),
             ))?;
             surfaces.push(surface);
-            materials.push(object.material.clone());
+            if materials.last() != Some(&object.material) {
+                materials.push(object.material.clone());
+            }
+            material_of.push(u32::try_from(materials.len() - 1).map_err(|_| {
+                bad(crate::scene::InvalidModel::new(
+                    "Type",
+                    "is beyond 2³² distinct materials",
+                ))
+            })?);
         }
         let boxes: Vec<Option<Bounds3>> = surfaces.iter().map(|s| s.bounds()).collect();
         Ok(PreparedScene {
             aggregate: Aggregate::new(&boxes),
             surfaces,
             materials,
+            material_of,
             lights: scene.lights.clone(),
             world: scene.world.clone(),
             textures: scene.textures.clone(),
         })
+    }
+
+    /// How object `index` is lit.
+    #[inline]
+    pub fn material(&self, index: usize) -> &Material {
+        &self.materials[self.material_of[index] as usize]
     }
 }
 
@@ -209,6 +229,43 @@ mod tests {
     use crate::geometry::Ray;
     use crate::scene::{ControlNet, Object, Scene};
     use crate::workspace::Workspace;
+
+    /// Objects in a row with one material share its entry, and every object is lit by its
+    /// own material whatever the sharing (a runs-only dedup that compared with the wrong
+    /// entry would light the third sphere red).
+    #[test]
+    fn objects_in_a_row_share_their_material() {
+        let sphere = |x: f64| ShapeKind::Sphere {
+            center: DVec3::new(x, 0.0, 0.0),
+            radius: 0.5,
+        };
+        let red = Material {
+            cs: crate::scene::Rgb::new(1.0, 0.0, 0.0),
+            ..Material::default()
+        };
+        let mut scene = Scene::default();
+        for (x, material) in [
+            (0.0, Material::default()),
+            (1.0, Material::default()),
+            (2.0, red.clone()),
+            (3.0, Material::default()),
+        ] {
+            let mut object = Object::new(sphere(x));
+            object.material = material;
+            scene.objects.push(object);
+        }
+        let valid = ValidScene::new(scene.clone()).unwrap();
+        let prepared = PreparedScene::new(&valid).unwrap();
+        assert_eq!(
+            prepared.materials.len(),
+            3,
+            "two runs of white around the red one"
+        );
+        assert_eq!(prepared.material_of, vec![0, 0, 1, 2]);
+        for (i, object) in scene.objects.iter().enumerate() {
+            assert_eq!(prepared.material(i), &object.material, "object {i}");
+        }
+    }
 
     /// `render --isolation` reaches cones and cylinders: they were built with the default
     /// root methods whatever the render asked for (found merging the scene BVH branch), so the

@@ -282,7 +282,7 @@ fn shade(
     ws: &mut Workspace,
 ) -> Rgb {
     let depth = branch.depth;
-    let m = &scene.materials[index];
+    let m = scene.material(index);
     if m.illumination == Illumination::Blackbody {
         return Rgb::ZERO;
     }
