@@ -26,7 +26,7 @@ pub struct PreparedScene {
     pub materials: Vec<Material>,
     /// Object `i`'s index into [`materials`](Self::materials). Objects in a row with equal
     /// materials share one entry (an NFF `f` line lights every object after it): balls-s5's
-    /// 66 430 spheres have 3, and a copy per object was 8 MB of its peak memory (issue 12).
+    /// 66 431 objects have 2, and a copy per object was 8 MB of its peak memory (issue 12).
     pub material_of: Vec<u32>,
     /// The lights.
     pub lights: Vec<Light>,
@@ -231,8 +231,8 @@ mod tests {
     use crate::workspace::Workspace;
 
     /// Objects in a row with one material share its entry, and every object is lit by its
-    /// own material whatever the sharing (a runs-only dedup that compared with the wrong
-    /// entry would light the third sphere red).
+    /// own material whatever the sharing (a dedup that compared with the wrong entry would
+    /// light the last sphere red).
     #[test]
     fn objects_in_a_row_share_their_material() {
         let sphere = |x: f64| ShapeKind::Sphere {
