@@ -254,7 +254,8 @@ impl Shift {
 /// lies in `(lo, hi)` and the values there cancel to [`FAR_CLUSTER_CANCELLATION`] of
 /// `Σ|cₖ||e|ᵏ` — roots clustered far from 0 against their spread — for
 /// [`Shift::around_cluster`]; else `None`. Degrees `3..=MAX_DEGREE` (lower ones have closed
-/// forms). One Horner pass: every query of the certified search asks.
+/// forms). Cheap, because every query of the certified search without a value slack asks:
+/// a few products, and the Horner pass only for the rare query that passes them.
 #[inline]
 pub(crate) fn far_centroid(c: &[f64], lo: f64, hi: f64) -> Option<f64> {
     let n = c.len().wrapping_sub(1);
