@@ -63,6 +63,12 @@ pub trait ImplicitFn: Send + Sync + std::fmt::Debug {
     /// residual error bound).
     fn poly(&self) -> &Poly3;
 
+    /// The total degree of `F` ([`Poly3::degree`]); a shape that knows it without building
+    /// [`poly`](Self::poly) says so (the sphere builds it only when asked).
+    fn degree(&self) -> u32 {
+        self.poly().degree()
+    }
+
     /// Writes the coefficients of `t ↦ F(o + t·d)`, low → high, into `out` (cleared first).
     /// Shapes with a closed-form restriction (sphere eq. 2.4, plane, torus) write it directly;
     /// the general case is [`Poly3::restrict_into`].
@@ -184,7 +190,7 @@ impl<F: ImplicitFn> Implicit<F> {
     /// Wraps `f`; `user_bounds` (a scene `Bounding volume`) tightens the
     /// shape's own bounds, or is the only bound of an unbounded shape.
     pub fn new(f: F, user_bounds: Option<Bounds3>) -> Self {
-        let degree = f.poly().degree();
+        let degree = f.degree();
         let bounds = match (f.bounds(), user_bounds) {
             (Some(a), Some(b)) => Some(a.intersection(&b)),
             (a, b) => a.or(b),
