@@ -27,7 +27,7 @@ use crate::root_interval::RootInterval;
 use crate::root_options::{RefineMethod, Tolerance};
 use crate::stats::RootStats;
 use crate::stored::Stored;
-use crate::univariate::ETA;
+use crate::univariate::root_bound_of;
 
 /// Highest degree shifted: the double-double shift costs `n²/2` products, and above this
 /// the per-node tiers of `multiprec.rs` are no dearer (the same bound as `dd_bernstein.rs`).
@@ -56,11 +56,6 @@ const FAR_CLUSTER_CANCELLATION: f64 = 1.0 / 4_294_967_296.0;
 /// spares the Horner pass to queries whose roots spread as far as they lie from 0, as the
 /// renderer's do.
 const FAR_CLUSTER_SPREAD: f64 = 1.0 / 256.0;
-
-/// Widens Fujiwara's root radius in [`cluster_radius`] so that its Cauchy inequality holds
-/// strictly with room for the rounding (which is `~n·u`, far below this): the radius only
-/// has to bound the roots, and 1.6 % wider costs nothing measurable.
-const FUJIWARA_MARGIN: f64 = 1.015625;
 
 /// A piece `(lo, hi]` of the stored polynomial `p`, re-expanded at its end `at` nearer 0
 /// ([`Shift::new`]) or at the centroid of a far cluster of roots ([`Shift::around_cluster`]).
@@ -119,7 +114,7 @@ impl Shift {
 
     /// The far-cluster re-expansion of a whole query range `(lo, hi]` (finite, certified
     /// non-zero end signs `s`) at `e` = [`far_centroid`]`(c, lo, hi)`: a radius `r` with
-    /// every complex root within `r` of `e` is certified for the exact `p(e + u)`
+    /// every real root within `r` of `e` is certified for the exact `p(e + u)`
     /// ([`cluster_radius`]), and the piece becomes `(lo, hi] ∩ (e − r, e + r)` in `u` —
     /// everything outside holds no root. Returns the shift and the certified signs of `p` at
     /// its ends in `u`, or `None` when this does not apply (a cluster wider than `|e|/2`, an
@@ -333,49 +328,26 @@ fn expand(c: &[f64], at: f64) -> Option<(Coeffs, Coeffs)> {
     finite.then_some((q, radii))
 }
 
-/// A radius `r` (an `f64`) with every complex root of the exact `q` (coefficients within
+/// A radius `r` (an `f64`) with every real root of the exact `q` (coefficients within
 /// `radii` of `q̂`) strictly within `r` of 0, or `None` when the leading coefficient is not
 /// certainly non-zero or something overflows.
 ///
-/// With `Bⱼ = |q̂ⱼ| + ρⱼ` and `L = |q̂ₙ| − ρₙ > 0`, every root `u` has `L|u|ⁿ ≤ Σⱼ₍ⱼ<ₙ₎ Bⱼ|u|ʲ`,
-/// so a radius where `L·rⁿ > Σ Bⱼrʲ` (checked with the rounding of both sides bounded) has
-/// every root inside (Cauchy: the difference has one positive zero and grows past it).
-/// Fujiwara's bound `2·max((B_{n−k}/L)^{1/k}, (B₀/2L)^{1/n})` meets the inequality, not
-/// strictly at worst; [`FUJIWARA_MARGIN`] makes it strict.
+/// Cauchy's and Fujiwara's bounds grow with every `|qⱼ|`, `j < n`, and shrink with `|qₙ|`, so
+/// [`root_bound_of`] taken on the magnitudes `Bⱼ = |q̂ⱼ| + ρⱼ` and `L = |q̂ₙ| − ρₙ > 0` bounds
+/// the roots of every polynomial within the radii (the rounding of `Bⱼ` and `L` themselves is
+/// one unit each, inside [`ROOT_BOUND_MARGIN`](crate::univariate::ROOT_BOUND_MARGIN)); its margin makes the
+/// bound strict.
 fn cluster_radius(q: &[f64], radii: &[f64]) -> Option<f64> {
     let n = q.len() - 1;
     let lead = q[n].abs() - radii[n];
     if lead <= 0.0 {
         return None;
     }
-    let b = |j: usize| q[j].abs() + radii[j];
-    let mut m = 0.0f64;
-    for k in 1..=n {
-        let ratio = if k == n { 0.5 * b(0) } else { b(n - k) } / lead;
-        // (Roots by `sqrt` and `cbrt` where they serve: `powf` costs ten times more.)
-        let root = match k {
-            1 => ratio,
-            2 => ratio.sqrt(),
-            3 => ratio.cbrt(),
-            4 => ratio.sqrt().sqrt(),
-            6 => ratio.cbrt().sqrt(),
-            8 => ratio.sqrt().sqrt().sqrt(),
-            _ => ratio.powf(1.0 / k as f64),
-        };
-        m = m.max(root);
+    let mut m: Coeffs = SmallVec::from_elem(lead, n + 1);
+    for ((mj, qj), rj) in m.as_mut_slice()[..n].iter_mut().zip(q).zip(radii) {
+        *mj = qj.abs() + rj;
     }
-    let r = 2.0 * m * FUJIWARA_MARGIN;
-    // Σ_{j<n} B_j r^j and L·r^n, each of at most 2n non-negative roundings (`powi`
-    // multiplies at most 2·log₂n + 1 times).
-    let mut s = 0.0;
-    for j in (0..n).rev() {
-        s = s * r + b(j);
-    }
-    let g = gamma_u(2 * n + 2, 0.5 * f64::EPSILON);
-    // (Each of those operations may also err by up to ETA in underflow, either way.)
-    let upper = s * (1.0 + 2.0 * g) + (2 * n) as f64 * ETA;
-    let lower = lead * r.powi(n as i32) * (1.0 - 2.0 * g) - (2 * n) as f64 * ETA;
-    (r.is_finite() && lower > upper).then_some(r)
+    root_bound_of(&m)
 }
 
 /// `a + b` rounded down (the exact sum's error term tells the direction).

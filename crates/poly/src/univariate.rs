@@ -379,8 +379,9 @@ pub fn gamma(k: usize) -> f64 {
 }
 
 /// Relative widening of [`Poly::root_bound`]'s Cauchy and Fujiwara bounds: `16u = 8ε`
-/// covers the division, the `powf` (libm's is within one ulp) and the products of each term
-/// several times over; a bound a few ulps too loose costs nothing.
+/// covers the division, the `k`-th root (`powf`, or up to three `sqrt`/`cbrt`, each within
+/// one ulp) and the products of each term several times over; a bound a few ulps too loose
+/// costs nothing.
 pub const ROOT_BOUND_MARGIN: f64 = 1.0 + 16.0 * UNIT_ROUNDOFF;
 
 /// Absolute allowance added to Fujiwara's bound in [`Poly::root_bound`]: 4 × 2^-1074, the
@@ -458,14 +459,13 @@ pub(crate) fn root_bound_of(c: &[f64]) -> Option<f64> {
         let q = ci.abs() / lc;
         cauchy = cauchy.max(q);
         let k = n - i;
-        let inv_k = 1.0 / k as f64;
         // Fujiwara: 2·max |c_{n−k}/c_n|^{1/k}, with the constant term halved.
         let half = if i == 0 { 0.5 } else { 1.0 };
         let root = if q >= f64::MIN_POSITIVE || *ci == 0.0 {
-            (q * half).powf(inv_k)
+            kth_root(q * half, k)
         } else {
             // The quotient underflowed: scale before dividing.
-            (ci.abs() * half).powf(inv_k) / lc.powf(inv_k)
+            kth_root(ci.abs() * half, k) / kth_root(lc, k)
         };
         fujiwara = fujiwara.max(root);
     }
@@ -473,6 +473,20 @@ pub(crate) fn root_bound_of(c: &[f64]) -> Option<f64> {
     let fujiwara = 2.0 * fujiwara * ROOT_BOUND_MARGIN + ROOT_BOUND_UNDERFLOW_PAD;
     let b = cauchy.min(fujiwara);
     b.is_finite().then_some(b)
+}
+
+/// `x^{1/k}` for `x ≥ 0`, by `sqrt` and `cbrt` where they serve (`k` = 2, 3, 4, 6, 8; each
+/// within an ulp or two, as libm's `powf`, which costs ten times more and does the rest).
+fn kth_root(x: f64, k: usize) -> f64 {
+    match k {
+        1 => x,
+        2 => x.sqrt(),
+        3 => x.cbrt(),
+        4 => x.sqrt().sqrt(),
+        6 => x.cbrt().sqrt(),
+        8 => x.sqrt().sqrt().sqrt(),
+        _ => x.powf(1.0 / k as f64),
+    }
 }
 
 impl QPoly {
