@@ -416,7 +416,7 @@ impl<'p> CertifiedSearch<'p> {
 /// slack at `max(|lo|, |hi|)`; an end it leaves undecided is tried again with the slack at its
 /// own radius (a value at `x` needs only `slack(|x|)`, which near the expansion point of a
 /// high-degree restriction is far below the slack at the range's far end).
-#[inline]
+#[inline(always)]
 pub(crate) fn end_signs(
     c: &[f64],
     lo: f64,

@@ -36,7 +36,7 @@
 use std::cell::Cell;
 
 use crate::bernstein::Bracket;
-use crate::double_double::{DD_UNDERFLOW, DD_UNIT, Dd, gamma_u};
+use crate::double_double::{DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, two_prod, two_sum};
 use crate::eval_bound::{
     certified_sign, comp_horner_bounded, comp_horner_bounded_and_derivative, horner_bounded,
     horner_derivative_and_bound,
@@ -67,15 +67,13 @@ const MAX_ABERTH_SWEEPS: u32 = 80;
 /// ≈ 0.1 off, with `p'` good to ~10 %).
 const MAX_POLISH_STEPS: u32 = 8;
 
-/// Largest `k·n` (approximations restored times degree) for which [`unreal_near_pairs`]
-/// polishes the restored approximations in double-double: its cost is `O(k·n)` per sweep,
-/// up to [`MAX_POLISH_STEPS`] sweeps, and it pays only where it decides what the
-/// subdivision would otherwise answer. Why 512, measured (callgrind, `paper-notes/
-/// isolation.md`, "All-roots queries: near-real pairs"): the planted corpus of degree 3–20
-/// restores 2–14 approximations of degree 14–20 (`k·n ≤ 280`) and every such query is then
-/// decided; planted degree 40 restores 33–34 of 40 (`k·n ≥ 1 320`), stays undecided after
-/// eight sweeps and cost 1.25× its instructions with the stage.
-const NEAR_REAL_MAX_WORK: usize = 512;
+/// Most Aberth sweeps of the complex polish of the near-real pairs ([`polish_complex`]),
+/// with `p` and `p'` in double-double from the approximations the `f64` iteration left.
+/// Why 16, measured (callgrind, `paper-notes/isolation.md`, "Near-real pairs: the
+/// derivative in double-double"): planted degree 40 needs 10 sweeps to decide all three of
+/// its queries (8 left two undecided), and a sweep of an approximation that has converged
+/// costs nothing (it is `done`); the margin covers degrees not measured.
+const MAX_COMPLEX_POLISH_STEPS: u32 = 16;
 
 /// Lowest degree for which [`unreal_near_pairs`] runs. Why 5, measured (callgrind,
 /// `paper-notes/isolation.md`, "All-roots queries: near-real pairs"): on the two
@@ -238,6 +236,8 @@ struct Scratch {
     before_real: Vec<C>,
     /// Whether `zᵢ` went back to its complex value ([`unreal_near_pairs`]).
     restored: Vec<bool>,
+    /// Whether [`polish_complex`] polishes `zᵢ` (it was not `done` on entry).
+    polished: Vec<bool>,
 }
 
 impl Scratch {
@@ -268,6 +268,7 @@ impl Scratch {
         self.before_real
             .reserve(m.saturating_sub(self.before_real.len()));
         self.restored.reserve(m.saturating_sub(self.restored.len()));
+        self.polished.reserve(m.saturating_sub(self.polished.len()));
     }
 }
 
@@ -337,14 +338,14 @@ pub(crate) fn real_pieces(c: &[f64], lo: f64, hi: f64, mut emit: impl FnMut(Piec
     if decided {
         decide(c, lo, hi, &mut s);
         collect_pieces(&mut s);
-        if !s.undecided.is_empty() {
-            let undecided = undecided_width(&s);
-            if unreal_near_pairs(c, &mut s) && certify(c, &mut s) {
-                decide(c, lo, hi, &mut s);
-                // Either answer is certified: keep the one that leaves less to subdivide.
-                if undecided_width(&s) < undecided {
-                    collect_pieces(&mut s);
-                }
+        if !s.undecided.is_empty() && unreal_near_pairs(c, &mut s) && certify(c, &mut s) {
+            decide(c, lo, hi, &mut s);
+            // Either answer is certified. The second is kept when it decides everything:
+            // a narrower undecided part is not always cheaper to subdivide (Chebyshev
+            // T₈₀'s cost 2.1× the first answer's; `paper-notes/isolation.md`, "Near-real
+            // pairs: the derivative in twice the precision").
+            if s.undecided.is_empty() {
+                collect_pieces(&mut s);
             }
         }
         for &piece in &s.pieces {
@@ -366,11 +367,6 @@ fn collect_pieces(s: &mut Scratch) {
         .extend(s.multiple.iter().map(|&r| Piece::Multiple(r)));
     s.pieces
         .sort_unstable_by(|x, y| x.start().total_cmp(&y.start()));
-}
-
-/// The total length of the parts [`decide`] left undecided.
-fn undecided_width(s: &Scratch) -> f64 {
-    s.undecided.iter().map(|&(l, h)| h - l).sum()
 }
 
 /// Starting points on the circles of the Newton polygon (Bini 1996, §3): the upper convex
@@ -739,7 +735,10 @@ fn polish_values_rescaled(c: &[f64], x: f64) -> (f64, f64, f64) {
 /// "All-roots queries: near-real pairs"): the approximations that were made real
 /// ([`approximate`]) whose real polish did not converge (no bound kept: `s.p_bound` NaN)
 /// and whose disc is not isolated go back to their complex values and are polished as
-/// complex roots with double-double values of `p` ([`polish_complex`]). Those are the
+/// complex roots with `p` and `p'` in twice the working precision ([`polish_complex`]),
+/// whatever their number (the stage's cost, `O(k·n)` a sweep for `k` restored
+/// approximations, was once capped at `k·n ≤ 512`: with `p'` in `f64` it did not decide
+/// planted degree 40; it now does, cheaper than the subdivision). Those are the
 /// near-real conjugate pairs of the stored polynomial (rounding made two close real roots
 /// complex) and the real roots next to them: a real approximation cannot converge to a
 /// non-real root, and its wandering keeps its neighbours' polish from converging too. A
@@ -762,7 +761,7 @@ fn unreal_near_pairs(c: &[f64], s: &mut Scratch) -> bool {
         }
     }
     let restored = s.restored.iter().filter(|&&r| r).count();
-    if restored == 0 || n < NEAR_REAL_MIN_DEGREE || restored * n > NEAR_REAL_MAX_WORK {
+    if restored == 0 || n < NEAR_REAL_MIN_DEGREE {
         return false;
     }
     polish_complex(c, s);
@@ -789,31 +788,32 @@ fn unreal_near_pairs(c: &[f64], s: &mut Scratch) -> bool {
     true
 }
 
-/// Aberth sweeps over the approximations not `done`, with `p(zᵢ)` in double-double complex
-/// arithmetic ([`dd_horner_c`]: about twice the working precision) and `p'(zᵢ)` in `f64`
-/// (Newton's step needs only a few correct digits of it), until `p(zᵢ)` is within its own
-/// error bound or the step does not move `zᵢ`; at most [`MAX_POLISH_STEPS`] sweeps. The
-/// rigorous bound on `|p(zᵢ)|` at the final `zᵢ` goes to `s.p_bound` for the certificate:
-/// its `f64` bound ([`abs_p_upper`]) is the noise that hid the pair's imaginary parts.
+/// Aberth sweeps over the approximations not `done`, with `p(zᵢ)` and `p'(zᵢ)` by the
+/// compensated complex Horner scheme ([`comp_horner_c_and_derivative`]: as accurate as
+/// Horner's rule in twice the working precision), until `p(zᵢ)` is within its estimated
+/// error or the step does not move `zᵢ`; at most [`MAX_COMPLEX_POLISH_STEPS`] sweeps. The
+/// derivative needs only a few correct digits, but near a cluster its `f64` value has none:
+/// it is noise of the size of the `f64` error of `p` over the cluster's spread, and
+/// Newton's step with it wanders (planted degree 40 stayed undecided after 40 sweeps with
+/// `p'` in `f64`; `paper-notes/isolation.md`, "Near-real pairs: the derivative in twice the
+/// precision"). Every approximation polished here then gets the rigorous double-double
+/// bound on `|p(zᵢ)|` at its final point ([`dd_horner_c`]) in `s.p_bound`, for the
+/// certificate: its `f64` bound ([`abs_p_upper`]) is the noise that hid the pair's
+/// imaginary parts. The iteration's own values carry no rigorous bound: they only steer.
 fn polish_complex(c: &[f64], s: &mut Scratch) {
     let n = s.z.len();
     let far = s.z.iter().any(|&z| is_far(z));
-    for _ in 0..MAX_POLISH_STEPS {
+    s.polished.clear();
+    s.polished.extend(s.done.iter().map(|&d| !d));
+    for _ in 0..MAX_COMPLEX_POLISH_STEPS {
         let mut moving = false;
         for i in 0..n {
             if s.done[i] {
                 continue;
             }
             let z = s.z[i];
-            let (v, bound) = dd_horner_c(c, z);
-            s.p_bound[i] = bound;
-            let (_, dp, _) = horner_c(c, z);
-            if !(bound.is_finite() && dp.is_finite()) {
-                s.done[i] = true;
-                s.p_bound[i] = f64::NAN;
-                continue;
-            }
-            if v.abs() <= bound - v.abs() {
+            let (v, dp, noise) = comp_horner_c_and_derivative(c, z);
+            if !(v.is_finite() && dp.is_finite() && noise.is_finite()) || v.abs() <= noise {
                 // |p(z)| is within the value's own error: z is as good as this precision gets.
                 s.done[i] = true;
                 continue;
@@ -833,15 +833,61 @@ fn polish_complex(c: &[f64], s: &mut Scratch) {
             break;
         }
     }
-    // Approximations still moving after the last sweep: their bound at the final point.
     for i in 0..n {
-        if !s.done[i] {
-            s.p_bound[i] = dd_horner_c(c, s.z[i]).1;
-            if !s.p_bound[i].is_finite() {
-                s.p_bound[i] = f64::NAN;
-            }
+        if s.polished[i] {
+            let bound = dd_horner_c(c, s.z[i]).1;
+            s.p_bound[i] = if bound.is_finite() { bound } else { f64::NAN };
         }
     }
+}
+
+/// `p(z)` and `p'(z)` by the compensated Horner scheme in complex arithmetic (Graillat &
+/// Ménissier-Morain, "Accurate polynomial evaluation in floating point complex arithmetic",
+/// 2008): each complex product `v·z` and each addition of a coefficient is split by
+/// error-free transformations (TwoProduct by fused multiply–add, TwoSum) into its rounded
+/// value and its exact error, and the errors are carried by Horner's rule of their own in
+/// `f64`; the derivative's recurrence `p' ← p'·z + p` the same way, the value's error
+/// entering it. The result is as accurate as Horner's rule in twice the working precision,
+/// with about half the operations of double-double Horner ([`dd_horner_c`]). Also an
+/// *estimate* (not a bound) of the value's remaining error, `2ε|v| + γ(4·len)²·Σ|cᵢ||z|ⁱ`
+/// after the paper's a-priori bound, for the iteration's stop test only.
+fn comp_horner_c_and_derivative(c: &[f64], z: C) -> (C, C, f64) {
+    /// `a·b + c·d` for `f64`s: the rounded value and its error (exact up to the rounding of
+    /// the error terms' sum, which the iteration does not care about).
+    #[inline(always)]
+    fn dot2(a: f64, b: f64, c: f64, d: f64) -> (f64, f64) {
+        let (p, e) = two_prod(a, b);
+        let (q, f) = two_prod(c, d);
+        let (s, g) = two_sum(p, q);
+        (s, e + f + g)
+    }
+    let az = z.abs_fast();
+    let (mut v, mut ev) = (C::default(), C::default());
+    let (mut d, mut ed) = (C::default(), C::default());
+    let mut sum = 0.0;
+    for &ci in c.iter().rev() {
+        // p' ← p'·z + p, with p's rounded value and its carried error.
+        let (d_re, e_re) = dot2(d.re, z.re, -d.im, z.im);
+        let (d_re, f_re) = two_sum(d_re, v.re);
+        let (d_im, e_im) = dot2(d.re, z.im, d.im, z.re);
+        let (d_im, f_im) = two_sum(d_im, v.im);
+        ed = ed.mul(z).add(ev).add(C::new(e_re + f_re, e_im + f_im));
+        d = C::new(d_re, d_im);
+        // p ← p·z + cᵢ.
+        let (v_re, e_re) = dot2(v.re, z.re, -v.im, z.im);
+        let (v_re, f_re) = two_sum(v_re, ci);
+        let (v_im, e_im) = dot2(v.re, z.im, v.im, z.re);
+        ev = ev.mul(z).add(C::new(e_re + f_re, e_im));
+        v = C::new(v_re, v_im);
+        sum = sum * az + ci.abs();
+    }
+    let value = v.add(ev);
+    let g = gamma_ratio(4 * c.len());
+    (
+        value,
+        d.add(ed),
+        2.0 * f64::EPSILON * value.abs_fast() + g * g * sum,
+    )
 }
 
 /// `p(z)` by Horner's rule in double-double complex arithmetic (rounded to an `f64` complex
@@ -1947,8 +1993,17 @@ mod tests {
     /// drawn from `seed`, and its degree (the seeds below give degrees 13–19 with near-real
     /// pairs).
     fn near_real_planted(seed: u64) -> (Poly<f64>, usize) {
+        planted_of_degree(seed, 12..=20)
+    }
+
+    /// A planted polynomial of a degree drawn from `degrees`, roots `k/m` in `[0, 1]`,
+    /// `m ≤ 1024`, stored in `f64`.
+    fn planted_of_degree(
+        seed: u64,
+        degrees: std::ops::RangeInclusive<usize>,
+    ) -> (Poly<f64>, usize) {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        let d = rng.gen_range(12..=20usize);
+        let d = rng.gen_range(degrees);
         let roots: Vec<_> = (0..d)
             .map(|_| {
                 let m = rng.gen_range(2..=1024i64);
@@ -1984,6 +2039,29 @@ mod tests {
             decide(c, lo, hi, &mut s);
             assert!(s.undecided.is_empty(), "seed {seed}: {:?}", s.undecided);
             let stats = check(&p, lo, hi);
+            assert_eq!(
+                (
+                    stats.inclusion_decided,
+                    stats.inclusion_undecided,
+                    stats.subdivisions
+                ),
+                (1, 0, 0),
+                "seed {seed}: decided by the discs alone: {stats:?}"
+            );
+        }
+    }
+
+    /// Planted polynomials of degree 40 (as the bench's growth corpus): the stored `f64`
+    /// polynomial has a dozen or more near-real pairs, whose `f64` derivative is noise; with
+    /// `p` and `p'` compensated ([`polish_complex`]) every query is decided by the discs
+    /// alone — no subdivision — and agrees with the exact oracle. Caught: with `p'` in
+    /// `f64` the polish wandered and each of these queries left parts to the double-double
+    /// subdivision (`inclusion_undecided = 1`).
+    #[test]
+    fn planted_degree_forty_is_decided_by_the_discs() {
+        for seed in [1u64, 5, 11] {
+            let (p, _) = planted_of_degree(seed, 40..=40);
+            let stats = check(&p, -0.5, 1.5);
             assert_eq!(
                 (
                     stats.inclusion_decided,
