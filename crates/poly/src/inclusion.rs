@@ -68,11 +68,12 @@ const MAX_ABERTH_SWEEPS: u32 = 80;
 const MAX_POLISH_STEPS: u32 = 8;
 
 /// Most Aberth sweeps of the complex polish of the near-real pairs ([`polish_complex`]),
-/// with `p` and `p'` in double-double from the approximations the `f64` iteration left.
-/// Why 16, measured (callgrind, `paper-notes/isolation.md`, "Near-real pairs: the
-/// derivative in double-double"): planted degree 40 needs 10 sweeps to decide all three of
-/// its queries (8 left two undecided), and a sweep of an approximation that has converged
-/// costs nothing (it is `done`); the margin covers degrees not measured.
+/// with `p` and `p'` in twice the working precision from the approximations the `f64`
+/// iteration left. Why 16, measured (`paper-notes/isolation.md`, "Near-real pairs: the
+/// derivative in twice the precision"): the polish of planted degree 40 ends after 9–12
+/// sweeps, of planted 80 after 15, of planted 3–20 after 6–9 (with `p'` in double-double,
+/// 8 sweeps left two of the three degree-40 queries undecided); an approximation that has
+/// converged costs nothing in the later sweeps (it is `done`).
 const MAX_COMPLEX_POLISH_STEPS: u32 = 16;
 
 /// The complex polish stops moving an approximation whose last step `w` was this many times
