@@ -1486,6 +1486,20 @@ mod tests {
 
     /// The certified answer on `(lo, hi]` with its statistics, checked root for root against
     /// the exact oracle (exact isolation and refinement of the same stored polynomial).
+    /// The query of `stats` was answered by the discs alone: decided, nothing left undecided,
+    /// nothing subdivided.
+    fn assert_decided_by_discs(stats: &RootStats, what: &str) {
+        assert_eq!(
+            (
+                stats.inclusion_decided,
+                stats.inclusion_undecided,
+                stats.subdivisions
+            ),
+            (1, 0, 0),
+            "{what}: decided by the discs alone: {stats:?}"
+        );
+    }
+
     fn check(p: &Poly<f64>, lo: f64, hi: f64) -> RootStats {
         let mut stats = RootStats::default();
         let got = p
@@ -1716,16 +1730,7 @@ mod tests {
     #[test]
     fn pair_four_ulps_apart_is_certified_non_real() {
         let close = Poly::from_roots(&[0.5, 0.5 + 4.0 * f64::EPSILON, 2.0, -1.0, 3.0]);
-        let stats = check(&close, -10.0, 10.0);
-        assert_eq!(
-            (
-                stats.inclusion_decided,
-                stats.inclusion_undecided,
-                stats.subdivisions
-            ),
-            (1, 0, 0),
-            "decided by the discs: {stats:?}"
-        );
+        assert_decided_by_discs(&check(&close, -10.0, 10.0), "four ulps apart");
         let roots = close.real_roots(-10.0, 10.0, 1e-15).expect("valid query");
         assert_eq!(roots.len(), 3, "{roots:?}");
     }
@@ -2062,16 +2067,7 @@ mod tests {
             );
             decide(c, lo, hi, &mut s);
             assert!(s.undecided.is_empty(), "seed {seed}: {:?}", s.undecided);
-            let stats = check(&p, lo, hi);
-            assert_eq!(
-                (
-                    stats.inclusion_decided,
-                    stats.inclusion_undecided,
-                    stats.subdivisions
-                ),
-                (1, 0, 0),
-                "seed {seed}: decided by the discs alone: {stats:?}"
-            );
+            assert_decided_by_discs(&check(&p, lo, hi), &format!("seed {seed}"));
         }
     }
 
@@ -2085,16 +2081,7 @@ mod tests {
     fn planted_degree_forty_is_decided_by_the_discs() {
         for seed in [1u64, 5, 11] {
             let (p, _) = planted_of_degree(seed, 40..=40);
-            let stats = check(&p, -0.5, 1.5);
-            assert_eq!(
-                (
-                    stats.inclusion_decided,
-                    stats.inclusion_undecided,
-                    stats.subdivisions
-                ),
-                (1, 0, 0),
-                "seed {seed}: decided by the discs alone: {stats:?}"
-            );
+            assert_decided_by_discs(&check(&p, -0.5, 1.5), &format!("seed {seed}"));
         }
     }
 
