@@ -248,8 +248,6 @@ struct Scratch {
     before_real: Vec<C>,
     /// Whether `zᵢ` went back to its complex value ([`unreal_near_pairs`]).
     restored: Vec<bool>,
-    /// Whether [`polish_complex`] polishes `zᵢ` (it was not `done` on entry).
-    polished: Vec<bool>,
 }
 
 impl Scratch {
@@ -280,7 +278,6 @@ impl Scratch {
         self.before_real
             .reserve(m.saturating_sub(self.before_real.len()));
         self.restored.reserve(m.saturating_sub(self.restored.len()));
-        self.polished.reserve(m.saturating_sub(self.polished.len()));
     }
 }
 
@@ -800,9 +797,10 @@ fn unreal_near_pairs(c: &[f64], s: &mut Scratch) -> bool {
     true
 }
 
-/// Aberth sweeps over the approximations not `done`, with `p(zᵢ)` and `p'(zᵢ)` by the
-/// compensated complex Horner scheme ([`comp_horner_c_and_derivative`]: as accurate as
-/// Horner's rule in twice the working precision), until `p(zᵢ)` is within its estimated
+/// Aberth sweeps over the restored approximations (`s.restored`, the ones not `done` on
+/// entry), with `p(zᵢ)` and `p'(zᵢ)` by the compensated complex Horner scheme
+/// ([`comp_horner_c_and_derivative`]: as accurate as Horner's rule in twice the working
+/// precision), until `p(zᵢ)` is within its estimated
 /// error or the step does not move `zᵢ`; at most [`MAX_COMPLEX_POLISH_STEPS`] sweeps. The
 /// derivative needs only a few correct digits, but near a cluster its `f64` value has none:
 /// it is noise of the size of the `f64` error of `p` over the cluster's spread, and
@@ -815,8 +813,6 @@ fn unreal_near_pairs(c: &[f64], s: &mut Scratch) -> bool {
 fn polish_complex(c: &[f64], s: &mut Scratch) {
     let n = s.z.len();
     let far = s.z.iter().any(|&z| is_far(z));
-    s.polished.clear();
-    s.polished.extend(s.done.iter().map(|&d| !d));
     for _ in 0..MAX_COMPLEX_POLISH_STEPS {
         let mut moving = false;
         for i in 0..n {
@@ -858,7 +854,7 @@ fn polish_complex(c: &[f64], s: &mut Scratch) {
         }
     }
     for i in 0..n {
-        if s.polished[i] {
+        if s.restored[i] {
             let bound = dd_horner_c(c, s.z[i]).1;
             s.p_bound[i] = if bound.is_finite() { bound } else { f64::NAN };
         }
