@@ -78,7 +78,8 @@ const MAX_COMPLEX_POLISH_STEPS: u32 = 16;
 
 /// The complex polish stops moving an approximation whose last step `w` was this many times
 /// inside its gap: `POLISH_SETTLED·n·|w|` below both `|Im z|` and the distance to every
-/// other approximation ([`polish_complex`]). Its disc radius is about `n·|w|` (the
+/// other approximation ([`polish_complex`]) — a relative factor (the step against the gap),
+/// scale-free like both sides. Its disc radius is about `n·|w|` (the
 /// Weierstrass correction times `n`), and the step already taken squared that error, so
 /// further steps would not change what the certificate decides; and if they would, only the
 /// certificate decides (an undecided part goes to subdivision). A heuristic: why 4, measured
