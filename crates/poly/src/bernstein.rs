@@ -200,6 +200,7 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
     /// coefficients and `R = max(|t_min|, |a + w|)`: then every Bernstein coefficient of `Δ`
     /// on every node is at most `slack` (they are blossom values, each a convex combination of
     /// products of numbers of modulus at most `R`), and so is `|Δ(t)|` at every point.
+    #[inline(always)]
     pub(crate) fn new(
         p: &'p [f64],
         t_min: f64,
@@ -215,7 +216,7 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         }
         let a = t_min;
         let mut vs = S::zeroed(n + 1);
-        let base_ops = bernstein_on(p, a, w, vs.at_mut());
+        let base_ops = bernstein_on(p, n, a, w, vs.at_mut());
         let (aa, aw) = (a.abs(), w.abs());
         // Underflow: each rounding may add up to ETA absolutely; later steps multiply such an
         // error by at most (|a| + |w|) per Horner step and by at most n + 1 in the basis
@@ -289,6 +290,7 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
     /// Certified signs of the node's coefficients (0 = not certain). The end coefficients of
     /// nodes touching `u = 0` (and `u = 1` when `w` is exact) are the values `p(t_min)`,
     /// `p(t_max)`, whose signs the caller certified directly.
+    #[inline(always)]
     fn classify(&self, node: &Node<S>) -> Class {
         let err = self.threshold(node);
         let v = node.v.at();
@@ -859,9 +861,13 @@ const RECIP_BINOM: [[f64; RECIP_ROWS]; RECIP_ROWS] = {
 
 /// The Bernstein coefficients of `p` (lowest first, degree `n = p.len() − 1`) on
 /// `[a, a + w]`, written into `v` (`n + 1` slots), in plain `f64`; returns the number of
-/// roundings on any path ([`BernsteinIsolator::new`] bounds the error with it).
-fn bernstein_on(p: &[f64], a: f64, w: f64, v: &mut [f64]) -> u32 {
-    let n = p.len() - 1;
+/// roundings on any path ([`BernsteinIsolator::new`] bounds the error with it). The degree is
+/// passed in so that callers with exact-size storage, where it is a compile-time constant,
+/// get every loop unrolled.
+#[inline(always)]
+fn bernstein_on(p: &[f64], n: usize, a: f64, w: f64, v: &mut [f64]) -> u32 {
+    debug_assert_eq!(n + 1, p.len(), "the degree of p");
+    let (p, v) = (&p[..=n], &mut v[..=n]);
     // Step 1: Taylor shift and scaling, q(u) = p(a + w·u), by Horner's rule on
     // polynomials: out ← out·(a + w·u) + c_k. Per step a path meets one product and at
     // most two sums: 3 roundings per step.
@@ -896,6 +902,34 @@ fn bernstein_on(p: &[f64], a: f64, w: f64, v: &mut [f64]) -> u32 {
     3 * n as u32 + binom_ops + n as u32
 }
 
+/// Whether `p` certainly has no root on `[t_min, t_max]`: its Bernstein coefficients there,
+/// with the rigorous bound of [`BernsteinIsolator`] (and the value slack `slack`, as there),
+/// all have the certified sign of the ends, `s_min` at `t_min` and `s_max` at `t_max` (both
+/// certified by the caller). The top node's classification only — no subdivision — for the
+/// degrees with exact-size storage (3 to 10); `false` for any other degree, an overflowing
+/// map or any sign variation or uncertain sign (Descartes' rule then proves nothing).
+pub(crate) fn no_root_on(p: &[f64], t_min: f64, t_max: f64, ends: (i8, i8), slack: f64) -> bool {
+    fn go<S: Coeffs>(p: &[f64], t_min: f64, t_max: f64, ends: (i8, i8), slack: f64) -> bool {
+        BernsteinIsolator::<S>::new(p, t_min, t_max, ends, slack)
+            .is_some_and(|iso| matches!(iso.classify(&iso.top), Class::Empty))
+    }
+    let ordered = t_min.partial_cmp(&t_max) == Some(std::cmp::Ordering::Less);
+    if !ordered || ends.0 == 0 || ends.0 != ends.1 {
+        return false;
+    }
+    match p.len() {
+        4 => go::<[f64; 4]>(p, t_min, t_max, ends, slack),
+        5 => go::<[f64; 5]>(p, t_min, t_max, ends, slack),
+        6 => go::<[f64; 6]>(p, t_min, t_max, ends, slack),
+        7 => go::<[f64; 7]>(p, t_min, t_max, ends, slack),
+        8 => go::<[f64; 8]>(p, t_min, t_max, ends, slack),
+        9 => go::<[f64; 9]>(p, t_min, t_max, ends, slack),
+        10 => go::<[f64; 10]>(p, t_min, t_max, ends, slack),
+        11 => go::<[f64; 11]>(p, t_min, t_max, ends, slack),
+        _ => false,
+    }
+}
+
 /// Whether `p` has few roots on `(lo, hi]` by a rough count: at most one sign variation of
 /// its Bernstein coefficients there, computed in plain `f64` without an error bound
 /// (Descartes' rule bounds the roots by the variations in exact arithmetic). A heuristic
@@ -909,7 +943,7 @@ pub(crate) fn few_roots_likely(p: &[f64], lo: f64, hi: f64) -> bool {
         return false;
     }
     let mut v: SmallVec<[f64; 64]> = SmallVec::from_elem(0.0, p.len());
-    bernstein_on(p, lo, w, &mut v);
+    bernstein_on(p, p.len() - 1, lo, w, &mut v);
     let mut changes = 0;
     let mut last = 0.0f64;
     for &b in &v {
@@ -925,6 +959,7 @@ pub(crate) fn few_roots_likely(p: &[f64], lo: f64, hi: f64) -> bool {
 }
 
 /// Divides `v[j]` by `C(n, j)`; returns the roundings this adds on any path.
+#[inline(always)]
 fn binomial_row_into(n: usize, v: &mut [f64]) -> u32 {
     if n < RECIP_ROWS {
         // Multiplication by the rounded reciprocal: two roundings (the table entry and the

@@ -19,6 +19,7 @@ use crate::certified::{CertifiedSearch, Found, end_signs};
 use crate::closed_form::{linear_smallest, quadratic_smallest};
 use crate::eval_bound::certified_sign;
 use crate::exact_oracle::{ExactOracle, SquareFreeSign};
+use crate::guess::{GUESS_DEGREES, Guess, smallest_by_guess};
 use crate::inclusion::{INCLUSION_MIN_DEGREE, Piece, real_pieces};
 use crate::multiprec::refine_wide;
 use crate::refine::{
@@ -988,6 +989,19 @@ fn certified_smallest(
         // Every point of the interval is within x_tol of any root in it, and opposite end
         // signs prove one: no isolation needed (a shadow ray's "is anything in the way").
         return Ok(Some(lo + 0.5 * (hi - lo)));
+    }
+    if opts.refine == RefineMethod::NewtonBisection
+        && GUESS_DEGREES.contains(&(c.len() - 1))
+        && signs.0 != 0
+    {
+        match smallest_by_guess(c, lo, hi, signs, opts.tolerance(), slack) {
+            Guess::Root(x) => {
+                stats.guessed += 1;
+                return Ok(Some(x));
+            }
+            Guess::NoRoot => return Ok(None),
+            Guess::Declined => {}
+        }
     }
     let search =
         CertifiedSearch::run_with_signs(c, (lo, hi), signs, true, (slack, range_slack), stats);

@@ -66,6 +66,7 @@ mod double_double;
 mod eval_bound;
 mod exact_bisection;
 mod exact_oracle;
+mod guess;
 mod inclusion;
 mod int_poly;
 mod isolate;

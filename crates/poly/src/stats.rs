@@ -41,6 +41,11 @@ pub struct RootStats {
     pub with_root: u64,
     /// Queries answered by a certified closed form (degree 1 or 2).
     pub closed_form: u64,
+    /// Smallest-root queries answered by guess and verify: a Newton guess from the range's
+    /// start, proved by certified signs either side of it and a Bernstein test of the range
+    /// before it, with no subdivision or certified refinement (`paper-notes/isolation.md`,
+    /// "Guess and verify").
+    pub guessed: u64,
     /// Queries whose certified isolation could not decide some sign in `f64` and built the
     /// exact Sturm sequence of the stored polynomial (at most once per query; it is then used
     /// only on the pieces `f64` could not decide). This is the statistic the renderer reports.
@@ -102,6 +107,7 @@ impl RootStats {
         self.unresolved += other.unresolved;
         self.with_root += other.with_root;
         self.closed_form += other.closed_form;
+        self.guessed += other.guessed;
         self.exact_fallbacks += other.exact_fallbacks;
         self.refine_fallbacks += other.refine_fallbacks;
         self.adaptive_pieces += other.adaptive_pieces;
@@ -176,6 +182,7 @@ mod tests {
         a.count_query(4);
         a.count_query(40);
         a.exact_fallbacks = 1;
+        a.guessed = 9;
         a.inclusion_decided = 5;
         a.inclusion_undecided = 6;
         a.shifted_pieces = 2;
@@ -196,6 +203,7 @@ mod tests {
             "degree 40 lands in the last bucket"
         );
         assert_eq!(b.exact_fallbacks, 2, "fallbacks summed");
+        assert_eq!(b.guessed, 18, "guesses summed");
         assert_eq!(b.subdivisions, 7, "only b had subdivisions");
         assert_eq!(
             (
