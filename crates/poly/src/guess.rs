@@ -29,9 +29,12 @@ const MAX_GUESS_STEPS: u32 = 12;
 /// `x ∓ δ` (neighbouring doubles when `δ` is below their spacing) then decide.
 const SETTLED_REL: f64 = 4.0 * f64::EPSILON;
 
-/// Degrees the guess is tried for: from the cubic (below, closed forms) to 10 (the sizes
-/// [`no_root_on`] certifies without allocating).
-pub(crate) const GUESS_DEGREES: std::ops::RangeInclusive<usize> = 3..=10;
+/// Degrees the guess is tried for: cubics and quartics (tori, the quartic surfaces). The
+/// proof works to degree 10 (the sizes [`no_root_on`] certifies without allocating), but on
+/// Barth's sextic it proved only 47 % of the hits, and there the wasted iterations — chains
+/// of dependent operations — cost more time than the proofs saved (840², two threads: user
+/// time +5 %, though 1.1 % fewer instructions; `paper-notes/isolation.md`).
+pub(crate) const GUESS_DEGREES: std::ops::RangeInclusive<usize> = 3..=4;
 
 /// What [`smallest_by_guess`] proved.
 #[derive(Clone, Copy, Debug, PartialEq)]
