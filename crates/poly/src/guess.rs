@@ -33,7 +33,7 @@ const SETTLED_REL: f64 = 4.0 * f64::EPSILON;
 /// proof works to degree 10 (the sizes [`no_root_on`] certifies without allocating), but on
 /// Barth's sextic it proved only 47 % of the hits, and there the wasted iterations — chains
 /// of dependent operations — cost more time than the proofs saved (840², two threads: user
-/// time +5 %, though 1.1 % fewer instructions; `paper-notes/isolation.md`).
+/// time +3 % median, though 1.1 % fewer instructions; `paper-notes/isolation.md`).
 pub(crate) const GUESS_DEGREES: std::ops::RangeInclusive<usize> = 3..=4;
 
 /// What [`smallest_by_guess`] proved.
