@@ -53,14 +53,16 @@ pub(crate) enum Guess {
 /// there is none when the iteration steps past `hi`; [`Guess::Declined`] otherwise (a root
 /// the iteration skipped, a sign no `f64` tier certifies, a range Descartes' rule cannot
 /// clear). `(s_lo, s_hi)` are the certified signs of `p(lo)` (non-zero) and `p(hi)`; `slack`
-/// bounds the true polynomial's distance from the stored one, as for the isolator.
+/// bounds the true polynomial's distance from the stored one, as for the isolator, and
+/// `range_slack` is its value on the whole range (`slack.at(max(|lo|, |hi|))`, which the
+/// caller has already computed: a slack is a function evaluation per ray).
 pub(crate) fn smallest_by_guess(
     c: &[f64],
     lo: f64,
     hi: f64,
     (s_lo, s_hi): (i8, i8),
     tol: Tolerance,
-    slack: Slack<'_>,
+    (slack, range_slack): (Slack<'_>, f64),
 ) -> Guess {
     if !slack.is_some() && far_centroid(c, lo, hi).is_some() {
         // Roots clustered far away (a ray polynomial restricted far from its surface): each
@@ -71,7 +73,6 @@ pub(crate) fn smallest_by_guess(
     let x = match newton_from(c, lo, hi, tol) {
         Newton::Settled(x) => x,
         Newton::Beyond => {
-            let range_slack = slack.at(lo.abs().max(hi.abs()));
             return if no_root_on(c, lo, hi, (s_lo, s_hi), range_slack) {
                 Guess::NoRoot
             } else {
@@ -89,8 +90,8 @@ pub(crate) fn smallest_by_guess(
     if s_l != s_lo || s_h != -s_lo {
         return Guess::Declined;
     }
-    let range_slack = slack.at(lo.abs().max(l.abs()));
-    if no_root_on(c, lo, l, (s_lo, s_l), range_slack) {
+    let before_slack = slack.at(lo.abs().max(l.abs()));
+    if no_root_on(c, lo, l, (s_lo, s_l), before_slack) {
         Guess::Root(x)
     } else {
         Guess::Declined
@@ -228,7 +229,7 @@ mod tests {
             with_root[k % 2] += usize::from(!roots.is_empty());
             let s_hi = certified_sign(&c, hi, 0.0);
             let tol_abs = Tolerance::absolute(tol);
-            let x = match smallest_by_guess(&c, lo, hi, (s_lo, s_hi), tol_abs, Slack::NONE) {
+            let x = match smallest_by_guess(&c, lo, hi, (s_lo, s_hi), tol_abs, (Slack::NONE, 0.0)) {
                 Guess::Root(x) => x,
                 Guess::NoRoot => {
                     misses += 1;
@@ -275,7 +276,7 @@ mod tests {
         assert!((x - 5.0).abs() < 1e-6, "Newton went to {x}");
         let s_lo = certified_sign(&c, 0.0, 0.0);
         assert_eq!(
-            smallest_by_guess(&c, 0.0, 10.0, (s_lo, 1), tol, Slack::NONE),
+            smallest_by_guess(&c, 0.0, 10.0, (s_lo, 1), tol, (Slack::NONE, 0.0)),
             Guess::Declined
         );
         let r = Poly::new(c.to_vec())

@@ -1481,8 +1481,6 @@ mod tests {
     /// Tolerance of the answers compared here (absolute, on roots of size ≤ 21).
     const X_TOL: f64 = 1e-12;
 
-    /// The certified answer on `(lo, hi]` with its statistics, checked root for root against
-    /// the exact oracle (exact isolation and refinement of the same stored polynomial).
     /// The query of `stats` was answered by the discs alone: decided, nothing left undecided,
     /// nothing subdivided.
     fn assert_decided_by_discs(stats: &RootStats, what: &str) {
@@ -1497,6 +1495,8 @@ mod tests {
         );
     }
 
+    /// The certified answer on `(lo, hi]` with its statistics, checked root for root against
+    /// the exact oracle (exact isolation and refinement of the same stored polynomial).
     fn check(p: &Poly<f64>, lo: f64, hi: f64) -> RootStats {
         let mut stats = RootStats::default();
         let got = p

@@ -994,7 +994,7 @@ fn certified_smallest(
         && GUESS_DEGREES.contains(&(c.len() - 1))
         && signs.0 != 0
     {
-        match smallest_by_guess(c, lo, hi, signs, opts.tolerance(), slack) {
+        match smallest_by_guess(c, lo, hi, signs, opts.tolerance(), (slack, range_slack)) {
             Guess::Root(x) => {
                 stats.guessed += 1;
                 return Ok(Some(x));

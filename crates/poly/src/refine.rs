@@ -392,7 +392,7 @@ fn sign_with(c: &[f64], x: f64, fx: f64, err: f64, slack: f64) -> (f64, i8) {
 
 /// `p(x)` and `p'(x)` by Horner's rule.
 #[inline]
-pub(crate) fn horner_with_derivative(c: &[f64], x: f64) -> (f64, f64) {
+fn horner_with_derivative(c: &[f64], x: f64) -> (f64, f64) {
     let mut d = 0.0;
     let mut v = 0.0;
     for &ci in c.iter().rev() {

@@ -419,7 +419,7 @@ impl fmt::Display for StatsReport<'_> {
             "  closed form (degree 1-2)           {:>12}",
             r.closed_form
         )?;
-        writeln!(f, "  guess and verify (degree 3-4)      {:>12}", r.guessed)?;
+        writeln!(f, "  guess and verify                   {:>12}", r.guessed)?;
         writeln!(
             f,
             "  exact-rational fallbacks           {:>12}",
