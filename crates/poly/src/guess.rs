@@ -24,9 +24,15 @@ use crate::stored::Slack;
 /// smallest root.
 const MAX_GUESS_STEPS: u32 = 12;
 
-/// A step below this fraction of `|x|` (four units of `f64` rounding) has settled whatever
-/// the tolerance: Newton's iteration cannot get closer in `f64`, and the proof's points
-/// `x ∓ δ` (neighbouring doubles when `δ` is below their spacing) then decide.
+/// A step below this fraction of the tolerance (absolute, `tol.near(x)`) has settled: near a
+/// simple root Newton's error after such a step is far below it, and the proof's points
+/// `x ∓ δ` lie half a tolerance out, so the guess is inside with room to spare. A quarter
+/// keeps the last step well inside `δ` without asking for one more.
+const SETTLED_TOL_FRACTION: f64 = 0.25;
+
+/// A step below this fraction of `|x|` (relative: four units of `f64` rounding) has settled
+/// whatever the tolerance: Newton's iteration cannot get closer in `f64`, and the proof's
+/// points `x ∓ δ` (neighbouring doubles when `δ` is below their spacing) then decide.
 const SETTLED_REL: f64 = 4.0 * f64::EPSILON;
 
 /// Degrees the guess is tried for: cubics and quartics (tori, the quartic surfaces). The
@@ -149,7 +155,7 @@ fn newton_fixed<const N: usize>(c: &[f64], lo: f64, hi: f64, tol: Tolerance) -> 
         x = next;
         // Settled: a step below a quarter of the tolerance, or at the rounding noise of `x`
         // (all `x_tol = 0` can ask for).
-        if step.abs() <= (0.25 * tol.near(x)).max(SETTLED_REL * x.abs()) {
+        if step.abs() <= (SETTLED_TOL_FRACTION * tol.near(x)).max(SETTLED_REL * x.abs()) {
             return Newton::Settled(x);
         }
     }
