@@ -34,8 +34,19 @@ const MAX_REFINE_STEPS: u32 = 2200;
 /// a member carries at least a rounding of `u = ε/2` relative to the largest one, so past
 /// this ratio the leading coefficient is below that rounding, and the next remainder (whose
 /// quotient divides by it) is decided by noise (issue 11: `−0.376x⁴ − 3.6e-121x² + 7.6x −
-/// 0.094` lost its roots 0.0123 and 2.72 this way). A relative bound, on one member.
+/// 0.094` lost its roots 0.0123 and 2.72 this way). A relative bound, on one member. `P`
+/// itself is held to it too: its leading coefficient and `P' = V₁`'s enter every member his
+/// recurrence computes (a leading 1.1e-57 lost a pair of roots of a degree-7 `P`).
 const MAX_TAIL_OVER_LEAD: f64 = 1.0 / f64::EPSILON;
+
+/// Whether a member's (highest power first) other coefficients exceed its leading one by more
+/// than [`MAX_TAIL_OVER_LEAD`].
+fn tail_over_lead(member: &[f64]) -> bool {
+    member
+        .iter()
+        .skip(1)
+        .any(|c| c.abs() > MAX_TAIL_OVER_LEAD * member[0].abs())
+}
 
 /// Stam's Sturm sequence: member `k` stored highest power first, as in his `STURM_SERIE`.
 #[derive(Clone, Debug, PartialEq)]
@@ -75,7 +86,8 @@ impl StamSturm {
         let mut abnormal = members
             .iter()
             .flatten()
-            .any(|c| *c != 0.0 && c.abs() < f64::MIN_POSITIVE);
+            .any(|c| *c != 0.0 && c.abs() < f64::MIN_POSITIVE)
+            || tail_over_lead(&members[0]);
         let mut j = 2;
         while j <= n0 {
             let (s0, s1) = (&members[members.len() - 2], &members[members.len() - 1]);
@@ -105,10 +117,7 @@ impl StamSturm {
                 .any(|c| !c.is_finite() || (*c != 0.0 && c.abs() < f64::MIN_POSITIVE));
             // After his division by |lead| the leading coefficient is ±1: a tail beyond
             // MAX_TAIL_OVER_LEAD means the unscaled lead was below the others' rounding.
-            abnormal |= s2
-                .iter()
-                .skip(1)
-                .any(|c| c.abs() > MAX_TAIL_OVER_LEAD * s2[0].abs());
+            abnormal |= tail_over_lead(&s2);
             members.push(s2);
             // while (S1->a[0] == 0.0): shift the coefficients left and append a zero, keeping
             // the stored degree (so the member is evaluated as x times the shifted one, as in

@@ -872,3 +872,89 @@ fn heuristics_still_answer_ordinary_planted_roots() {
         );
     }
 }
+
+/// Issue 11, coefficient fuzzer (seed 7, cases 925, 4825, 4849 and 5973 of 6 000): every
+/// polynomial here has the exact root 0 (`c₀ = 0`) and other roots within 1e-15 of it
+/// (−9.96e-152; 5.54e-296; −8.5e-81; 4.18e-20 and ±5.37e-16). The heuristics ran their `f64`
+/// Sturm counts on `p` itself, whose values near 0 are all rounding noise, and missed roots
+/// silently: `StamSturm` lost both 0 and −9.96e-152, `Sturm` answered "no root" for the third
+/// polynomial. Only the certified method divided out the factor `x^k`; every method but the
+/// exact oracle now does (exact, so the answers stay the stored polynomial's): the root 0 is
+/// reported as such and the quotient's roots near 0 have a non-zero value at 0 between them.
+#[test]
+fn heuristics_missed_roots_next_to_an_exact_root_0() {
+    let cases: [&[f64]; 4] = [
+        &[
+            0.0,
+            2.1308394389642905e-151,
+            2.138853833282205,
+            -2.0,
+            -0.48082902850669385,
+            0.02018581056396407,
+            -2.391470301942178,
+        ],
+        &[
+            0.0,
+            0.0,
+            -7.857683443306872e-244,
+            1.4173188174939137e52,
+            -7.332550966429436,
+            -6.166432011030594,
+            -4.890600602575328e-190,
+            -8.028319366506466,
+        ],
+        &[
+            0.0,
+            1.3254044856028244,
+            1.560563869968563e80,
+            -4.0,
+            3.4103142004139255e231,
+            -4.895791639822389,
+            -1.0756537219580373,
+            -7.005043901884465,
+            3.8756877262593026,
+        ],
+        &[
+            0.0,
+            6.49926722095411,
+            -1.5530679460592442e20,
+            5.100965295804372,
+            9.647838104167164,
+            -3.891827793480611,
+            1.8615067213787748e81,
+            2.106731724324362,
+            4.0,
+        ],
+    ];
+    let roots = [4, 2, 2, 4];
+    for (c, n) in cases.iter().zip(roots) {
+        let p = Poly::new(c.to_vec());
+        assert_eq!(oracle(&p, -10.0, 10.0).len(), n, "the oracle on {c:?}");
+        for method in HEURISTIC {
+            assert_heuristic_honest(&p, -10.0, 10.0, 0.0, method);
+        }
+    }
+}
+
+/// Issue 11, coefficient fuzzer (seed 13, case 4892 of 6 000): a degree-7 polynomial with
+/// ordinary coefficients and a leading one of 1.12e-57 (so a root near −1.7e56, far outside
+/// the range) has four roots in `(−10, 10]`; `StamSturm` answered two of them
+/// (−6.918, −0.811) and silently lost 0.892 and 6.980, a pair its end signs cannot show. The
+/// `MAX_TAIL_OVER_LEAD` check covered the members his recurrence computes but not `P`
+/// itself (nor so `P' = V₁`), whose leading coefficient every later member is built from. `P`
+/// is now checked the same way and such a sequence refused.
+#[test]
+fn stam_tiny_leading_coefficient_of_p_lost_a_pair_of_roots() {
+    let p = Poly::new(vec![
+        -9.054984717512546,
+        -2.0,
+        5.745503192046847,
+        0.6338476446599248,
+        9.360586165237986,
+        0.0,
+        -0.1962319208826706,
+        1.1225913075401667e-57,
+    ]);
+    assert_eq!(oracle(&p, -10.0, 10.0).len(), 4, "the oracle");
+    assert_heuristic_honest(&p, -10.0, 10.0, 0.0, IsolationMethod::StamSturm);
+}
