@@ -443,7 +443,9 @@ fn normalise(p: Poly<f64>, mut err: Vec<f64>, lossy: &mut bool) -> (Poly<f64>, V
 /// normal range, or a leading coefficient is dropped as noise (within its bound but not an
 /// exact zero with a zero bound): that is a decision the arithmetic cannot back, whether the
 /// degree then falls by more than one or the whole remainder goes (a multiple root claimed
-/// where two roots may be close).
+/// where two roots may be close). So does a *kept* coefficient within its bound: its sign is
+/// noise, and the roots it places are then guessed (issue 11: coefficients 1e-296 … 1e-60
+/// beside ones of order 1 placed roots within 1e-59 of 0 that such a sequence never counted).
 fn neg_rem_f64(a: &Poly<f64>, d: &Poly<f64>, lossy: &mut bool) -> (Poly<f64>, Vec<f64>) {
     let (ac, dc) = (a.coeffs(), d.coeffs());
     let dn = dc.len() - 1;
@@ -481,6 +483,10 @@ fn neg_rem_f64(a: &Poly<f64>, d: &Poly<f64>, lossy: &mut bool) -> (Poly<f64>, Ve
         mag.pop();
     }
     let err: Vec<f64> = mag.iter().map(|m| g * m).collect();
+    // A coefficient kept but within its own rounding: its sign is noise.
+    if r.iter().zip(&err).any(|(x, e)| *e > 0.0 && x.abs() <= *e) {
+        *lossy = true;
+    }
     if r.iter().chain(&err).any(|x| !x.is_finite())
         || r.iter().any(|&x| x != 0.0 && x.abs() < f64::MIN_POSITIVE)
     {

@@ -958,3 +958,60 @@ fn stam_tiny_leading_coefficient_of_p_lost_a_pair_of_roots() {
     assert_eq!(oracle(&p, -10.0, 10.0).len(), 4, "the oracle");
     assert_heuristic_honest(&p, -10.0, 10.0, 0.0, IsolationMethod::StamSturm);
 }
+
+/// Issue 11, coefficient fuzzer (seed 99, cases 2386 and 185; seed 21, case 1335): each
+/// polynomial has roots within 1e-59 of 0 (a pair ±1.33e-60 beside −2.65e39; −2.0e-296
+/// beside −1.90; a pair ±1.5e-108 beside three ordinary roots), set by coefficients far below
+/// the others. `Sturm`'s rounded sequence counted 1 root of 3, 0 of 2 and 1 of 5 over the
+/// whole range — its low-order coefficients were rounding noise — and the end signs agreed
+/// with those counts, so it answered with roots missing. A remainder coefficient within its
+/// own rounding bound (kept, not dropped) now makes the sequence unusable for checked counts,
+/// as a dropped one did.
+#[test]
+fn sturm_noise_coefficients_kept_in_a_member_lost_roots_near_0() {
+    let cases: [(&[f64], f64); 3] = [
+        (
+            &[
+                0.3088568674455212,
+                0.0,
+                -1.7345688449646505e119,
+                -2.0,
+                0.0,
+                -9.272075980714312,
+            ],
+            1e300,
+        ),
+        (
+            &[
+                5.960937587487828e-296,
+                2.9538474772799805,
+                -1.0,
+                5.902145008984711,
+                0.8535229888496745,
+                0.0,
+                0.8186624949596588,
+                -9.090026902279093e-142,
+            ],
+            10.0,
+        ),
+        (
+            &[
+                -1.1763480113632118e-216,
+                2.3667104365370644e-208,
+                0.5230928108017623,
+                -3.583516640820452,
+                0.0,
+                2.7379681744501063,
+                0.0,
+                6.725990861105622,
+                4.854822110159887e-27,
+            ],
+            10.0,
+        ),
+    ];
+    for ((c, r), n) in cases.iter().zip([3, 2, 5]) {
+        let p = Poly::new(c.to_vec());
+        assert_eq!(oracle(&p, -r, *r).len(), n, "the oracle on {c:?}");
+        assert_heuristic_honest(&p, -r, *r, 1e-12, IsolationMethod::Sturm);
+    }
+}
