@@ -72,6 +72,7 @@ mod int_poly;
 mod isolate;
 mod multiprec;
 mod near_zero;
+mod octuple;
 mod ops;
 mod query;
 mod refine;

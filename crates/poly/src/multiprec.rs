@@ -23,6 +23,7 @@
 //! `paper-notes/isolation.md`, "Adaptive precision").
 
 use astro_float::{BigFloat, RoundingMode};
+use f256::f256;
 
 use smallvec::SmallVec;
 
@@ -30,6 +31,7 @@ use crate::bernstein::Bracket;
 use crate::dd_bernstein::{DdBernstein, DdOutcome};
 use crate::double_double::{DD_MIN_EXACT, DD_UNDERFLOW, DD_UNIT, Dd, gamma_u, two_sum};
 use crate::eval_bound::{abs_weights, certified_sign, certified_value, chain_underflow_weight};
+use crate::octuple::{OCT_UNIT, Oct, oct, oct_approx, oct_pair, oct_to_dd};
 use crate::refine::{IllinoisEnd, illinois_by, probe_by};
 use crate::root_options::Tolerance;
 use crate::scalar::{binary_exponent, rat_from_f64};
@@ -37,8 +39,9 @@ use crate::stats::RootStats;
 use crate::univariate::Poly;
 use num_traits::Zero;
 
-/// Precision of the first arbitrary-precision tier, in bits (the next after double-double's
-/// 106); each further tier doubles it.
+/// Precision of the first arbitrary-precision tier, in bits (the next after the octuple
+/// tier's 237); each further tier doubles it. Why not 256: 19 bits more than the octuple tier
+/// rarely decide what it could not, at twice its cost.
 const FIRST_BITS: usize = 256;
 
 /// The precision cap. A node still undecided here holds a multiple root or a cluster tighter
@@ -68,6 +71,8 @@ const SPLIT_FRACTIONS: [f64; 2] = [0.414_213_562_373_095_1, 0.585_786_437_626_90
 pub(crate) enum Tier {
     /// Double-double (`hi + lo`, 106 bits), error-free transformations on `f64`.
     Dd,
+    /// IEEE `binary256` (237 bits, `octuple.rs`), on the stack.
+    Oct,
     /// [`astro_float::BigFloat`] with this many bits (round to nearest, even).
     Big(usize),
 }
@@ -76,7 +81,8 @@ impl Tier {
     /// The next, more precise tier, `None` above [`MAX_BITS`].
     fn next(self) -> Option<Tier> {
         match self {
-            Tier::Dd => Some(Tier::Big(FIRST_BITS)),
+            Tier::Dd => Some(Tier::Oct),
+            Tier::Oct => Some(Tier::Big(FIRST_BITS)),
             Tier::Big(b) if 2 * b <= MAX_BITS => Some(Tier::Big(2 * b)),
             Tier::Big(_) => None,
         }
@@ -91,8 +97,8 @@ trait Arith {
     type T: Clone;
     /// `x` exactly.
     fn exact_f64(&self, x: f64) -> Self::T;
-    /// `hi + lo` (a TwoSum pair) exactly.
-    fn exact_pair(&self, hi: f64, lo: f64) -> Self::T;
+    /// `hi + lo` (a TwoSum pair) exactly; `None` when the tier cannot hold it.
+    fn exact_pair(&self, hi: f64, lo: f64) -> Option<Self::T>;
     fn add(&self, x: &Self::T, y: &Self::T) -> Self::T;
     fn add_f(&self, x: &Self::T, y: f64) -> Self::T;
     fn mul(&self, x: &Self::T, y: &Self::T) -> Self::T;
@@ -109,6 +115,11 @@ trait Arith {
     fn sign_beyond(&self, x: &Self::T, k: usize, mag: &Mag, mult: f64, tiny: f64) -> i8;
     /// The absolute underflow error of one operation (0 without underflow).
     fn underflow(&self) -> f64;
+    /// Whether the bounds hold for what this value computed: `false` when an operation
+    /// erred in a way the standard model with [`Arith::underflow`] does not cover.
+    fn clean(&self) -> bool {
+        true
+    }
     /// `x` rounded to `f64` (NaN outside its range): a value to place trial points by, never
     /// a certified one.
     fn approx(&self, x: &Self::T) -> f64;
@@ -121,8 +132,8 @@ impl Arith for DdArith {
     fn exact_f64(&self, x: f64) -> Dd {
         Dd::from_f64(x)
     }
-    fn exact_pair(&self, hi: f64, lo: f64) -> Dd {
-        Dd::from_pair(hi, lo)
+    fn exact_pair(&self, hi: f64, lo: f64) -> Option<Dd> {
+        Some(Dd::from_pair(hi, lo))
     }
     fn add(&self, x: &Dd, y: &Dd) -> Dd {
         x.add(*y)
@@ -157,6 +168,68 @@ impl Arith for DdArith {
     }
     fn approx(&self, x: &Dd) -> f64 {
         x.hi
+    }
+}
+
+impl Arith for Oct {
+    type T = f256;
+    fn exact_f64(&self, x: f64) -> f256 {
+        oct(x)
+    }
+    fn exact_pair(&self, hi: f64, lo: f64) -> Option<f256> {
+        oct_pair(hi, lo)
+    }
+    fn add(&self, x: &f256, y: &f256) -> f256 {
+        *x + *y
+    }
+    fn add_f(&self, x: &f256, y: f64) -> f256 {
+        *x + oct(y)
+    }
+    fn mul(&self, x: &f256, y: &f256) -> f256 {
+        Oct::mul(self, *x, *y)
+    }
+    type F = f256;
+    fn factor(&self, y: f64) -> f256 {
+        oct(y)
+    }
+    fn mul_by(&self, x: &f256, y: &f256) -> f256 {
+        Oct::mul(self, *x, *y)
+    }
+    // Its exponent range (to 2^262143) is not unbounded: a magnitude that overflows `f64`
+    // goes to the astro-float tiers.
+    const WIDE_RANGE: bool = false;
+    fn sign_beyond(&self, x: &f256, k: usize, mag: &Mag, mult: f64, tiny: f64) -> i8 {
+        let Mag::F64(scale) = mag else {
+            return 0;
+        };
+        if !x.is_finite() || (k as f64) * OCT_UNIT >= 0.5 {
+            return 0;
+        }
+        // γ(k)·mag·mult ≤ 2k·u·mag·mult for k·u ≤ 1/2, formed in binary256 (its range holds
+        // it whatever f64 would underflow to) from exact factors (2k·u is an integer times a
+        // power of two): four roundings of at most 2^-237 each, covered by the factor
+        // 1 + 2^-200 (exact in binary256, not in f64).
+        let widen = oct(1.0) + oct(2f64.powi(-200));
+        let bound = (oct(2.0 * k as f64 * OCT_UNIT) * oct(*scale) * oct(mult) + oct(tiny)) * widen;
+        if !bound.is_finite() {
+            return 0;
+        }
+        // Comparisons are exact.
+        if x.abs() > bound {
+            if x.is_sign_negative() { -1 } else { 1 }
+        } else {
+            0
+        }
+    }
+    // No underflow bound: an underflowing product is flagged instead (`clean`).
+    fn underflow(&self) -> f64 {
+        0.0
+    }
+    fn clean(&self) -> bool {
+        Oct::clean(self)
+    }
+    fn approx(&self, x: &f256) -> f64 {
+        oct_approx(*x)
     }
 }
 
@@ -217,8 +290,8 @@ impl Arith for BigArith {
     fn exact_f64(&self, x: f64) -> BigFloat {
         big_from_f64(x)
     }
-    fn exact_pair(&self, hi: f64, lo: f64) -> BigFloat {
-        big_from_f64(hi).add(&big_from_f64(lo), exact_pair_bits(hi, lo), RM)
+    fn exact_pair(&self, hi: f64, lo: f64) -> Option<BigFloat> {
+        Some(big_from_f64(hi).add(&big_from_f64(lo), exact_pair_bits(hi, lo), RM))
     }
     fn add(&self, x: &BigFloat, y: &BigFloat) -> BigFloat {
         x.add(y, self.bits, RM)
@@ -327,6 +400,9 @@ fn horner_sign<A: Arith>(ar: &A, c: &[f64], x: f64) -> (i8, f64) {
     } else {
         2.0 * ar.underflow() * z
     };
+    if !ar.clean() {
+        return (0, ar.approx(&v));
+    }
     (ar.sign_beyond(&v, 2 * n, &s, 1.0, tiny), ar.approx(&v))
 }
 
@@ -364,6 +440,7 @@ fn wide_sign(c: &[f64], x: f64, from: Tier) -> (i8, Tier, f64) {
     while let Some(t) = tier {
         let (s, v) = match t {
             Tier::Dd => horner_sign(&DdArith, c, x),
+            Tier::Oct => horner_sign(&Oct::default(), c, x),
             Tier::Big(bits) => horner_sign(&BigArith { bits }, c, x),
         };
         if s != 0 {
@@ -429,7 +506,9 @@ fn classify<A: Arith>(
         (y, x, s_y, s_x)
     };
     let (wh, wl) = two_sum(other, -a);
-    let w = ar.exact_pair(wh, wl);
+    let Some(w) = ar.exact_pair(wh, wl) else {
+        return Class::Hopeless;
+    };
     let r = a.abs().max(other.abs());
     let Some((mag, zr)) = magnitude(c, r, A::WIDE_RANGE) else {
         return Class::Hopeless;
@@ -472,6 +551,9 @@ fn classify<A: Arith>(
             b[i] = ar.add(&b[i], &b[i - 1]);
         }
         b[j] = ar.add(&b[j], &q[j]);
+    }
+    if !ar.clean() {
+        return Class::Hopeless;
     }
     let k = 4 * n + 1;
     // Underflow: each operation may add `η`; a later Horner step multiplies such an error by
@@ -519,12 +601,14 @@ fn classify<A: Arith>(
 #[derive(Default)]
 struct Scratch {
     dd: (Vec<Dd>, Vec<Dd>),
+    oct: (Vec<f256>, Vec<f256>),
     big: (Vec<BigFloat>, Vec<BigFloat>),
 }
 
 fn classify_at(tier: Tier, c: &[f64], xy: (f64, f64), s: (i8, i8), sc: &mut Scratch) -> Class {
     match tier {
         Tier::Dd => classify(&DdArith, c, xy, s, &mut sc.dd.0, &mut sc.dd.1),
+        Tier::Oct => classify(&Oct::default(), c, xy, s, &mut sc.oct.0, &mut sc.oct.1),
         Tier::Big(bits) => classify(&BigArith { bits }, c, xy, s, &mut sc.big.0, &mut sc.big.1),
     }
 }
@@ -673,7 +757,7 @@ impl<'c> PieceIsolator<'c> {
                 return Some(Outcome::Undecided(x, y));
             }
             self.nodes += 1;
-            if let Tier::Big(_) = tier {
+            if tier > Tier::Dd {
                 self.wide_nodes += 1;
                 if !self.used_big {
                     self.used_big = true;
@@ -694,9 +778,14 @@ impl<'c> PieceIsolator<'c> {
                     None => return Some(Outcome::Undecided(x, y)),
                 },
                 Class::Split => {
-                    if let Tier::Big(bits) = tier
-                        && may_descend
-                        && let Some(run) = descend(c, (x, y), (s_x, s_y), bits, &self.sc.big.1)
+                    let wide = match tier {
+                        Tier::Dd => None,
+                        Tier::Oct => Some(Wide::Oct(&self.sc.oct.1)),
+                        Tier::Big(bits) => Some(Wide::Big(bits, &self.sc.big.1)),
+                    };
+                    if may_descend
+                        && let Some(wide) = wide
+                        && let Some(run) = descend(c, (x, y), (s_x, s_y), wide)
                     {
                         // The caller's loop drains the run before this stack.
                         self.fast = Some((run, y, s_y, SEGMENT_HALVINGS, Some((tier, depth))));
@@ -718,52 +807,97 @@ impl<'c> PieceIsolator<'c> {
     }
 }
 
-/// The double-double de Casteljau run on a node a wide tier of `bits` bits has just split
-/// (`big` its scaled Bernstein coefficients `B̂ᵢ` from [`classify`], from the end nearer 0),
-/// so that the node's subtree costs additions in double-double instead of a wide Taylor shift
-/// per node. `bᵢ = B̂ᵢ / C(n, i)` in the wide format (`C(n, i)` exact), rounded to
-/// double-double. Error handed down, per coefficient: [`classify`]'s bound `γ(k)·C(n, i)·M`
-/// divided by `C(n, i)`, the division's rounding (`u·|bᵢ|`) and the conversion's
-/// ([`big_to_dd`], `2^-104·|bᵢ|`). `None` when `M` or a coefficient leaves `f64`'s range.
+/// The double-double de Casteljau run on a node a wide tier has just split (`bernstein` its
+/// scaled Bernstein coefficients `B̂ᵢ` from [`classify`], from the end nearer 0), so that the
+/// node's subtree costs additions in double-double instead of a wide Taylor shift per node.
+/// `bᵢ = B̂ᵢ / C(n, i)` in the wide format (`C(n, i)` exact), rounded to double-double.
+/// Error handed down, per coefficient: [`classify`]'s bound `γ(k)·C(n, i)·M` divided by
+/// `C(n, i)`, the division's rounding (`u·|bᵢ|`) and the conversion's (`2^-104·|bᵢ|`), with
+/// `u` the tier's unit. `None` when `M` or a coefficient leaves `f64`'s range (or, at the
+/// octuple tier, a binomial coefficient its significand).
 fn descend<'c>(
     c: &'c [f64],
     (x, y): (f64, f64),
     s: (i8, i8),
-    bits: usize,
-    big: &[BigFloat],
+    bernstein: Wide<'_>,
 ) -> Option<DdBernstein<'c>> {
     let n = c.len() - 1;
-    if big.len() != n + 1 {
+    if bernstein.len() != n + 1 {
         return None;
     }
-    let ar = BigArith { bits };
     let (Mag::F64(mag), _) = magnitude(c, x.abs().max(y.abs()), true)? else {
         return None;
     };
+    let (mut b, unit): (SmallVec<[Dd; 64]>, f64) = match bernstein {
+        Wide::Big(bits, big) => (big_bernstein_to_dd(n, bits, big)?, BigArith { bits }.unit()),
+        Wide::Oct(coeffs) => (oct_bernstein_to_dd(n, coeffs)?, OCT_UNIT),
+    };
+    let largest = b.iter().fold(0.0f64, |m, v| m.max(v.hi.abs() + v.lo.abs()));
+    if x < 0.0 {
+        // Shifted from y towards x: coefficient i belongs to t = y + (x − y)·i/n.
+        b.reverse();
+    }
+    let k = 4 * n + 1;
+    let e0 = (2.0 * k as f64 * unit * mag + (unit + 2f64.powi(-104)) * largest)
+        * (1.0 + 8.0 * f64::EPSILON)
+        + DD_UNDERFLOW;
+    DdBernstein::from_bernstein(c, (x, y), s, b, e0, dd_sign)
+}
+
+/// The scaled Bernstein coefficients a wide tier computed, for [`descend`].
+enum Wide<'a> {
+    /// An astro-float tier of this many bits.
+    Big(usize, &'a [BigFloat]),
+    /// The octuple tier.
+    Oct(&'a [f256]),
+}
+
+impl Wide<'_> {
+    fn len(&self) -> usize {
+        match self {
+            Wide::Big(_, b) => b.len(),
+            Wide::Oct(b) => b.len(),
+        }
+    }
+}
+
+/// `B̂ᵢ / C(n, i)` at `bits` bits, each rounded to double-double ([`big_to_dd`]).
+fn big_bernstein_to_dd(n: usize, bits: usize, big: &[BigFloat]) -> Option<SmallVec<[Dd; 64]>> {
     // C(n, i) exactly: every intermediate C(n, i − 1)·(n − i + 1) < 2^(n + 64).
     let exact_bits = (n + 128).div_ceil(64) * 64;
     let mut binom = big_from_f64(1.0);
-    let mut b: SmallVec<[Dd; 64]> = SmallVec::with_capacity(n + 1);
-    let mut largest = 0.0f64;
+    let mut b = SmallVec::with_capacity(n + 1);
     for (i, bi) in big.iter().enumerate() {
         if i > 0 {
             binom = binom
                 .mul(&big_from_f64((n - i + 1) as f64), exact_bits, RM)
                 .div(&big_from_f64(i as f64), exact_bits, RM);
         }
-        let v = big_to_dd(&bi.div(&binom, bits, RM))?;
-        largest = largest.max(v.hi.abs() + v.lo.abs());
-        b.push(v);
+        b.push(big_to_dd(&bi.div(&binom, bits, RM))?);
     }
-    if x < 0.0 {
-        // Shifted from y towards x: coefficient i belongs to t = y + (x − y)·i/n.
-        b.reverse();
+    Some(b)
+}
+
+/// Degrees whose binomial coefficients the octuple tier computes exactly: every intermediate
+/// `C(n, i − 1)·(n − i + 1)` of the recurrence stays below `2^237` up to `n = 200` (`C(200,
+/// 100) < 2^196`).
+const OCT_EXACT_BINOMIAL_DEGREE: usize = 200;
+
+/// `B̂ᵢ / C(n, i)` in `binary256` (one rounding), each to double-double ([`oct_to_dd`]).
+fn oct_bernstein_to_dd(n: usize, coeffs: &[f256]) -> Option<SmallVec<[Dd; 64]>> {
+    if n > OCT_EXACT_BINOMIAL_DEGREE {
+        return None;
     }
-    let k = 4 * n + 1;
-    let e0 = (2.0 * k as f64 * ar.unit() * mag + (ar.unit() + 2f64.powi(-104)) * largest)
-        * (1.0 + 8.0 * f64::EPSILON)
-        + DD_UNDERFLOW;
-    DdBernstein::from_bernstein(c, (x, y), s, b, e0, dd_sign)
+    let mut binom = oct(1.0);
+    let mut b = SmallVec::with_capacity(n + 1);
+    for (i, bi) in coeffs.iter().enumerate() {
+        if i > 0 {
+            // Exact: an integer below 2^237 (OCT_EXACT_BINOMIAL_DEGREE), then an exact quotient.
+            binom = binom * oct((n - i + 1) as f64) / oct(i as f64);
+        }
+        b.push(oct_to_dd(*bi / binom)?);
+    }
+    Some(b)
 }
 
 /// `v` rounded to a double-double within `2^-104·|v|` (plus underflow, counted by the caller as
@@ -992,6 +1126,43 @@ mod tests {
     /// classifies a handful of nodes, not one per node of the tree (fails if the descent is
     /// removed: each of the pieces' nodes is then classified wide). Then each bracket is
     /// refined in adaptive precision with a few certified signs per root.
+    /// The octuple tier (session 16) signs T₈₀ 1e-9 away from its roots near ±1, where
+    /// double-double's bound cannot (its values there carry a noise bound near
+    /// `2^-103·Σ|cᵢ| ≈ 0.5`, against `|T₈₀| ≈ 6·10⁻⁶`), and its signs are the exact ones.
+    #[test]
+    fn octuple_tier_signs_chebyshev_80_where_double_double_cannot() {
+        let t = crate::testutil::chebyshev(80);
+        let c = t.to_f64();
+        assert_eq!(c.to_rat().as_ref(), Some(&t), "coefficients exact in f64");
+        let c = c.coeffs();
+        let (mut points, mut dd_undecided) = (0, 0);
+        for r in crate::testutil::chebyshev_roots(80)
+            .into_iter()
+            .filter(|r| r.abs() > 0.9)
+        {
+            for x in [r - 1e-9, r + 1e-9] {
+                let v = t.eval(&rat_from_f64(x).expect("finite"));
+                let exact = if v.is_positive() { 1 } else { -1 };
+                let (dd, _) = horner_sign(&DdArith, c, x);
+                let octuple = Oct::default();
+                let (o, approx) = horner_sign(&octuple, c, x);
+                assert!(octuple.clean());
+                assert_eq!(o, exact, "octuple sign at {x}");
+                assert!(dd == 0 || dd == exact, "double-double sign at {x}");
+                // The approximate value is T₈₀'s own to many digits.
+                let want = crate::scalar::rat_to_f64(&v);
+                assert!(
+                    (approx - want).abs() <= 1e-6 * want.abs(),
+                    "{approx} vs {want}"
+                );
+                points += 1;
+                dd_undecided += usize::from(dd == 0);
+            }
+        }
+        assert!(points >= 20, "{points} points");
+        assert_eq!(dd_undecided, points, "double-double decides none of them");
+    }
+
     #[test]
     fn chebyshev_80_descends_from_the_wide_tier_and_refines_by_regula_falsi() {
         let n = 80;
@@ -1073,7 +1244,9 @@ mod tests {
         }
         let ar = BigArith { bits: 256 };
         for (hi, lo) in pairs {
-            let sized = ar.exact_pair(hi, lo);
+            let sized = ar
+                .exact_pair(hi, lo)
+                .expect("the astro-float tier holds any pair");
             let full = big_from_f64(hi).add(&big_from_f64(lo), EXACT_PAIR_BITS, RM);
             let diff = sized.sub(&full, EXACT_PAIR_BITS, RM);
             assert!(
@@ -1164,7 +1337,7 @@ mod tests {
             for i in 1..=n {
                 changes += usize::from(exact[i].is_positive() != exact[i - 1].is_positive());
             }
-            for tier in [Tier::Dd, Tier::Big(256)] {
+            for tier in [Tier::Dd, Tier::Oct, Tier::Big(256)] {
                 let mut sc = Scratch::default();
                 let class = classify_at(tier, c, (x, y), s, &mut sc);
                 match class {
