@@ -40,8 +40,9 @@ use crate::univariate::Poly;
 use num_traits::Zero;
 
 /// Precision of the first arbitrary-precision tier, in bits (the next after the octuple
-/// tier's 237); each further tier doubles it. Why not 256: 19 bits more than the octuple tier
-/// rarely decide what it could not, at twice its cost.
+/// tier's 237); each further tier doubles it. 256 though it is only 19 bits above the octuple
+/// tier: planted degree 160's points need between the two, and with 512 next that query
+/// saved 3 % instead of paying 256 bits (`paper-notes/isolation.md`, "An octuple tier").
 const FIRST_BITS: usize = 256;
 
 /// The precision cap. A node still undecided here holds a multiple root or a cluster tighter
@@ -662,7 +663,7 @@ pub(crate) struct PieceIsolator<'c> {
     nodes: u32,
     /// Nodes classified at a wide tier (a wide Taylor shift each, the costly ones).
     wide_nodes: u32,
-    used_big: bool,
+    used_wide: bool,
     sc: Scratch,
 }
 
@@ -693,7 +694,7 @@ impl<'c> PieceIsolator<'c> {
             stack: SmallVec::new(),
             nodes: 0,
             wide_nodes: 0,
-            used_big: false,
+            used_wide: false,
             sc: Scratch::default(),
         }
     }
@@ -759,8 +760,8 @@ impl<'c> PieceIsolator<'c> {
             self.nodes += 1;
             if tier > Tier::Dd {
                 self.wide_nodes += 1;
-                if !self.used_big {
-                    self.used_big = true;
+                if !self.used_wide {
+                    self.used_wide = true;
                     stats.multiprecision_pieces += 1;
                 }
             }
@@ -1119,16 +1120,9 @@ mod tests {
         assert!(big_to_dd(&big_from_f64(1e300).mul(&big_from_f64(1e300), 256, RM)).is_none());
     }
 
-    /// Issue 11: Chebyshev `T₈₀`'s power-basis coefficients reach `2⁷⁹`, so near ±1 its
-    /// nodes need the 256-bit tier; the descent hands each split node's subtree to
-    /// double-double. Every root is certified in its bracket (the exact roots
-    /// `cos((2k − 1)π/160)`, all coefficients being exact in `f64`), and the wide tier
-    /// classifies a handful of nodes, not one per node of the tree (fails if the descent is
-    /// removed: each of the pieces' nodes is then classified wide). Then each bracket is
-    /// refined in adaptive precision with a few certified signs per root.
     /// The octuple tier (session 16) signs T₈₀ 1e-9 away from its roots near ±1, where
-    /// double-double's bound cannot (its values there carry a noise bound near
-    /// `2^-103·Σ|cᵢ| ≈ 0.5`, against `|T₈₀| ≈ 6·10⁻⁶`), and its signs are the exact ones.
+    /// double-double's bound cannot (about `γ(160)·Σ|cᵢ| ≈ 160·2^-103·2^100.7 ≈ 30`, against
+    /// `|T₈₀| ≈ 80²·10⁻⁹ ≈ 6·10⁻⁶` there), and its signs are the exact ones.
     #[test]
     fn octuple_tier_signs_chebyshev_80_where_double_double_cannot() {
         let t = crate::testutil::chebyshev(80);
@@ -1163,6 +1157,13 @@ mod tests {
         assert_eq!(dd_undecided, points, "double-double decides none of them");
     }
 
+    /// Issue 11: Chebyshev `T₈₀`'s power-basis coefficients reach `2⁷⁹`, so near ±1 its
+    /// nodes need a tier above double-double (the octuple one since session 16); the
+    /// descent hands each split node's subtree to double-double. Every root is certified in its bracket (the exact roots
+    /// `cos((2k − 1)π/160)`, all coefficients being exact in `f64`), and the wide tier
+    /// classifies a handful of nodes, not one per node of the tree (fails if the descent is
+    /// removed: each of the pieces' nodes is then classified wide). Then each bracket is
+    /// refined in adaptive precision with a few certified signs per root.
     #[test]
     fn chebyshev_80_descends_from_the_wide_tier_and_refines_by_regula_falsi() {
         let n = 80;
