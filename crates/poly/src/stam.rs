@@ -39,6 +39,12 @@ const MAX_REFINE_STEPS: u32 = 2200;
 /// recurrence computes (a leading 1.1e-57 lost a pair of roots of a degree-7 `P`).
 const MAX_TAIL_OVER_LEAD: f64 = 1.0 / f64::EPSILON;
 
+/// A coefficient of a member his recurrence computes is rounding noise when it is within
+/// this fraction of the sum of the magnitudes it was formed from (about six roundings, each
+/// at most `ε/2` relative, with room to spare): its sign, and the roots it places, are then
+/// guessed.
+const NOISE_REL: f64 = 4.0 * f64::EPSILON;
+
 /// Whether a member's (highest power first) other coefficients exceed its leading one by more
 /// than [`MAX_TAIL_OVER_LEAD`].
 fn tail_over_lead(member: &[f64]) -> bool {
@@ -58,8 +64,9 @@ pub struct StamSturm {
     /// A member's leading coefficient came out exactly zero (his shift loop ran: his
     /// recurrence gives `−rem` only when each degree drops by one, so past that point the
     /// members are not a Sturm sequence), a coefficient of `P` or of a member is below the
-    /// normal range or not finite, or a member's leading coefficient is below the rounding of
-    /// its others ([`MAX_TAIL_OVER_LEAD`]): [`StamSturm::count_roots_checked`] refuses.
+    /// normal range or not finite, a member's leading coefficient is below the rounding of
+    /// its others ([`MAX_TAIL_OVER_LEAD`]), or a computed coefficient is rounding noise
+    /// ([`NOISE_REL`]): [`StamSturm::count_roots_checked`] refuses.
     abnormal: bool,
 }
 
@@ -94,11 +101,16 @@ impl StamSturm {
             let at = |v: &Vec<f64>, i: usize| v.get(i).copied().unwrap_or(0.0);
             let (a0, b0) = (at(s0, 0), at(s1, 0));
             let c0 = b0 * at(s0, 1) - a0 * at(s1, 1);
+            let c0_mag = (b0 * at(s0, 1)).abs() + (a0 * at(s1, 1)).abs();
             let len = n0 - j + 1;
             let mut s2 = vec![0.0; len];
             let mut x = 1.0;
             for i in 1..=len {
-                s2[i - 1] = (c0 * at(s1, i) - b0 * (b0 * at(s0, i + 1) - a0 * at(s1, i + 1))) / x;
+                let v = c0 * at(s1, i) - b0 * (b0 * at(s0, i + 1) - a0 * at(s1, i + 1));
+                let mag = c0_mag * at(s1, i).abs()
+                    + b0.abs() * ((b0 * at(s0, i + 1)).abs() + (a0 * at(s1, i + 1)).abs());
+                abnormal |= mag > 0.0 && v.abs() <= NOISE_REL * mag;
+                s2[i - 1] = v / x;
                 if i == 1 {
                     x = s2[0].abs();
                     // The original divides by this even when it is zero, producing NaNs that

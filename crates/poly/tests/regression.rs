@@ -1015,3 +1015,24 @@ fn sturm_noise_coefficients_kept_in_a_member_lost_roots_near_0() {
         assert_heuristic_honest(&p, -r, *r, 1e-12, IsolationMethod::Sturm);
     }
 }
+
+/// Issue 11, coefficient fuzzer (seed 31, degrees to 40, case 1039): `−6.49e-273 −
+/// 1.41e-45·x − 6.69x² + 0.604x³ − 0.352x⁵` has roots −2.881, −2.1e-46 and −4.6e-228;
+/// `StamSturm` answered −2.881 alone. His recurrence computed members whose low coefficients
+/// were differences of terms far larger than themselves — rounding noise — and the pair near
+/// 0 vanished from his counts. A computed coefficient within `NOISE_REL` of the terms it was
+/// formed from now makes the sequence abnormal (refused), as a kept noise coefficient does
+/// for `Sturm`.
+#[test]
+fn stam_noise_coefficients_in_a_member_lost_roots_near_0() {
+    let p = Poly::new(vec![
+        -6.490860197344184e-273,
+        -1.4085792008667378e-45,
+        -6.687246194934122,
+        0.603698384502394,
+        0.0,
+        -0.35227815166146614,
+    ]);
+    assert_eq!(oracle(&p, -10.0, 10.0).len(), 3, "the oracle");
+    assert_heuristic_honest(&p, -10.0, 10.0, 1e-12, IsolationMethod::StamSturm);
+}
