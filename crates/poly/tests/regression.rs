@@ -1036,3 +1036,96 @@ fn stam_noise_coefficients_in_a_member_lost_roots_near_0() {
     assert_eq!(oracle(&p, -10.0, 10.0).len(), 3, "the oracle");
     assert_heuristic_honest(&p, -10.0, 10.0, 1e-12, IsolationMethod::StamSturm);
 }
+
+/// Issue 11, coefficient fuzzer (seed 31, degrees to 40, case 475, which overran the case
+/// budget at 682 s): a degree-31 polynomial with `c₀ = c₁ = 0` and coefficients from 2e-308
+/// to 5.2e297 on `(−∞, ∞)`. The exact method was the one method that did not divide out the
+/// double root 0, so its Descartes isolation (which needs a square-free polynomial) gave way
+/// to the exact Sturm sequence of the square-free part: 45 s for each of the three queries
+/// (measured), answering the root 0 as `−0.0`. It now divides `x²` out like every other
+/// method (9 ms; not timed here): the root 0 comes back as the `+0.0` the division reports,
+/// and every answer is still the exact oracle's.
+#[test]
+fn exact_method_on_a_double_root_0_took_the_square_free_path() {
+    let p = Poly::new(vec![
+        0.0,
+        0.0,
+        -1.7330546841468966,
+        9.694634597075261,
+        -2.2545944071504337e-179,
+        2.2250738585072014e-308,
+        0.0,
+        -2.836749616012746,
+        0.9721195758070102,
+        -8.78937535455091,
+        2.9959008906574373e-257,
+        4.081759070656285e59,
+        -0.1840906230891992,
+        5.902581792356552,
+        3.658435164112518,
+        7.919199451378436,
+        -4.383890299649296,
+        2.9148928645707493,
+        0.7729295143203627,
+        -1.8615821185323522,
+        -2.107273513458318e-308,
+        -2.046992753308386e-7,
+        2.2250738585072014e-308,
+        -6.111711521568783,
+        0.0,
+        -5.2103303540984284e297,
+        -6.2359011966546385,
+        1.2873239808256169e-27,
+        2.698836682524801,
+        6.131757800253766e-207,
+        -0.8960017780449956,
+        -1.0,
+    ]);
+    let o = with(IsolationMethod::Exact, 0.0);
+    let all = p
+        .real_roots_with(
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            &o,
+            &mut RootStats::default(),
+        )
+        .expect("the exact method answers");
+    assert_eq!(all.len(), 2, "{all:?}");
+    assert_eq!(
+        all[1].to_bits(),
+        0.0f64.to_bits(),
+        "the root 0 as +0.0: {all:?}"
+    );
+    // The other root, −1.16e-13: the certified method's (within its one spacing), and a sign
+    // change of the stored polynomial, in exact arithmetic, across its neighbours. (The
+    // exact-Sturm oracle itself takes over a minute on this polynomial.)
+    let certified = p
+        .real_roots_with(
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            &with(IsolationMethod::Bernstein, 0.0),
+            &mut RootStats::default(),
+        )
+        .expect("the certified method answers");
+    assert_roots_match(&all, &certified, 0.0, "exact against certified");
+    let q = p.to_rat().expect("finite");
+    let sign = |x: f64| {
+        let v = q.eval(&poly::rat_from_f64(x).expect("finite"));
+        let zero = Rat::from_integer(0.into());
+        i32::from(v > zero) - i32::from(v < zero)
+    };
+    assert_eq!(
+        sign(all[0].next_down()) * sign(all[0].next_up()),
+        -1,
+        "{all:?}"
+    );
+    let ivs = p
+        .isolate_roots_with(
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            &o,
+            &mut RootStats::default(),
+        )
+        .expect("the exact method isolates");
+    assert_eq!((ivs[1].lo, ivs[1].hi), (0.0, 0.0), "{ivs:?}");
+}
