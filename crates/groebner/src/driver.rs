@@ -79,6 +79,12 @@ pub(crate) const NEWTON_MAX_STEP_REL: f64 = 1e-3;
 /// moves each by at most a few `x_tol` more.
 const MERGE_X_TOLS: f64 = 4.0;
 
+/// `u`-candidates of an `f64` eliminant closer than this, relative to the `u`-range, are taken
+/// as the two halves of a split double root: `1e-6`, as [`CERT_WIDTH_REL`] (rounding splits a
+/// double root by about `√ε` of the scale, far below it; distinct simple roots this close are
+/// beyond what the `f64` eliminant resolves anyway). Each is then known only to the pair's gap.
+const NEAR_PAIR_REL: f64 = 1e-6;
+
 /// A `u`-candidate stands for a root within this many `x_tol` ([`Poly::real_roots`] locates
 /// each root to `x_tol`; the factor 2 covers the candidate's own rounding).
 const U_ERR_X_TOLS: f64 = 2.0;
@@ -432,9 +438,24 @@ pub(crate) fn find_roots<T: SolveScalar, P: Rows<T>, Q: Rows<f64>>(
     let margin = NEWTON_MAX_STEP_REL * (vb[1] - vb[0]).max(opts.x_tol);
     let v_search = [vb[0] - margin, vb[1] + margin];
     let u_err_f64 = U_ERR_X_TOLS * opts.x_tol;
+    let pair_gap = NEAR_PAIR_REL * (ub[1] - ub[0]);
     for k in 0..buf.u_roots.len() {
         let u = buf.u_roots[k];
         let before = buf.roots.len();
+        // A candidate with a neighbour this close is one of a split double root of the `f64`
+        // eliminant (two hits sharing one `u`, or a tangency): it is only known to about that
+        // distance, not to `x_tol`, and a source that vanishes identically at the true `u`
+        // must be seen to vanish here too (else its lone `v` hides the other hits at `u`).
+        let gap = [k.wrapping_sub(1), k + 1]
+            .iter()
+            .filter_map(|&j| buf.u_roots.get(j))
+            .map(|&w| (w - u).abs())
+            .fold(f64::INFINITY, f64::min);
+        let u_err_k = if !T::EXACT && gap < pair_gap {
+            u_err_f64.max(gap)
+        } else {
+            u_err_f64
+        };
         // Step 3: the first source that does not vanish at u gives the candidates; if none of
         // them verifies (an ill-conditioned element, or an extraneous u-root), the next
         // sources, ending with F1 and F2 (the gcd of F1(u, ·), F2(u, ·)), are tried.
@@ -444,7 +465,7 @@ pub(crate) fn find_roots<T: SolveScalar, P: Rows<T>, Q: Rows<f64>>(
             let mut rejected = 0;
             for level in std::iter::once(None).chain(SHARPEN_BITS.iter().copied().map(Some)) {
                 let (ut, u_err) = match level {
-                    None => (T::from_f64_exact(u), u_err_f64),
+                    None => (T::from_f64_exact(u), u_err_k),
                     Some(bits) => (
                         T::sharpen_root(&buf.elim, u, opts.x_tol, bits),
                         (-f64::from(bits)).exp2(),
@@ -469,7 +490,7 @@ pub(crate) fn find_roots<T: SolveScalar, P: Rows<T>, Q: Rows<f64>>(
         if buf.roots.len() > before {
             continue;
         }
-        let (Some(ut), Some(u_err)) = (T::from_f64_exact(u), T::from_f64(u_err_f64)) else {
+        let (Some(ut), Some(u_err)) = (T::from_f64_exact(u), T::from_f64(u_err_k)) else {
             continue;
         };
         for &g in originals.iter().flatten() {
@@ -629,7 +650,9 @@ fn vanishes_at<T: SolveScalar>(g: &impl Rows<T>, ut: &T, u_err: &T) -> bool {
 /// `buf.v_roots`; `false` when `g(u, ·)` vanishes identically.
 ///
 /// "Vanishes" is decided per coefficient `c_j(u)` of `v^j`:
-/// * `f64` sources: `|c_j(u)|` below [`VANISH_REL`] times the size of its terms;
+/// * `f64` sources: `|c_j(u)|` below [`VANISH_REL`] times the size of its terms, or, for a
+///   candidate of a near pair (`u_err` above `U_ERR_X_TOLS·x_tol`, [`NEAR_PAIR_REL`]), within
+///   the first-order bound below;
 /// * exact sources, evaluated exactly at the rational `ut` that lies within `u_err` of the true
 ///   root `u_r`: `|c_j(ut)| ≤ 2·u_err·Σ i|a_i|(|ut| + u_err)^{i−1}`, i.e. when the first-order
 ///   bound on `|c_j(ut) − c_j(u_r)|` cannot certify `c_j(u_r) ≠ 0`. No fixed threshold: a
@@ -646,13 +669,16 @@ fn v_candidates<T: SolveScalar>(
     buf.v_poly.clear();
     buf.v_roots.clear();
     let vanish = T::from_f64(VANISH_REL).expect("a small constant");
+    // An f64 candidate known only to a near pair's gap ([`find_roots`]): the first-order test
+    // too, with that error.
+    let pair = T::from_f64(U_ERR_X_TOLS * x_tol).is_some_and(|e| *u_err > e);
     let mut significant = false;
     for row in g.rows() {
         let (c, s, ds) = row_at(row, ut, u_err);
         let vanished = if T::EXACT {
             within_first_order(&c, u_err, ds)
         } else {
-            c.abs() <= vanish.clone() * s
+            c.abs() <= vanish.clone() * s || (pair && within_first_order(&c, u_err, ds))
         };
         significant |= !vanished;
         buf.v_poly.push(if vanished { T::zero() } else { c });

@@ -177,6 +177,10 @@ fn check_planted(
             continue;
         }
         // f64 finds every planted root, and the same root set as exact Stam.
+        eprintln!(
+            "DEBUG {m:?} exact {:?}\n f64 {:?}\n fl {:?}",
+            exact.roots, fl.roots, fl
+        );
         for p in &pts {
             prop_assert!(found(&fl.roots, p, POS_TOL), "{m:?} f64 missed {p:?}");
         }
@@ -342,6 +346,28 @@ fn seed_42fe_no_spurious_third_root_between_close_roots() {
     let b = [
         qb(&[(-1, 0, 0), (2, 1, 0), (-2, 0, 1)]),
         qb(&[(-2, 1, 0), (-3, 0, 1), (3, 1, 1)]),
+    ];
+    check_planted(pts, a, b).unwrap();
+}
+
+/// Seed `d3b73914` (session 16, a CI run of `63e7e50`; the bug predates that session):
+/// planted roots `(1/10, 4/7)` and `(1/2, 3/5)`, and a third root `(1/2, 0)` at the same `u`.
+/// Caught: the `f64` eliminant's double root `u = 1/2` splits into two candidates `2.4e-8`
+/// away; `F1(u, ·)`, which vanishes identically at `u = 1/2`, was not seen to vanish there
+/// (its coefficients, `≈ 1e-7`, are above the relative `VANISH_REL` test), so its lone root
+/// `v = 0` was verified and `F2`, which also holds `v = 3/5`, was never asked: the `f64`
+/// resultant missed `(1/2, 3/5)`. A candidate of such a near pair is now known only to the
+/// pair's gap (`NEAR_PAIR_REL`), and a source vanishing to first order within it is skipped.
+#[test]
+fn seed_d3b7_planted_root_at_one_half() {
+    let pts = [(r(1, 10), r(4, 7)), (r(1, 2), r(3, 5))];
+    let a = [
+        qb(&[(-1, 0, 0), (-1, 0, 1), (2, 1, 1)]),
+        qb(&[(1, 0, 0), (-3, 1, 0), (-1, 0, 1), (2, 1, 1)]),
+    ];
+    let b = [
+        qb(&[(1, 0, 0), (-2, 1, 0), (2, 0, 1), (-4, 1, 1)]),
+        qb(&[(2, 0, 0), (-4, 1, 0), (2, 0, 1), (2, 1, 1)]),
     ];
     check_planted(pts, a, b).unwrap();
 }
