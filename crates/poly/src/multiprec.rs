@@ -34,7 +34,7 @@ use crate::eval_bound::{abs_weights, certified_sign, certified_value, chain_unde
 use crate::octuple::{OCT_UNIT, Oct, oct, oct_approx, oct_pair, oct_to_dd};
 use crate::refine::{IllinoisEnd, illinois_by, probe_by};
 use crate::root_options::Tolerance;
-use crate::scalar::{binary_exponent, rat_from_f64};
+use crate::scalar::{pair_span_bits, rat_from_f64};
 use crate::stats::RootStats;
 use crate::univariate::Poly;
 use num_traits::Zero;
@@ -244,8 +244,7 @@ struct BigArith {
 const EXACT_PAIR_BITS: usize = 2176;
 
 /// Precision, in bits (a multiple of 64, at most [`EXACT_PAIR_BITS`]), that holds
-/// `hi + lo` exactly: from the carry above `hi`'s leading bit down to `lo`'s last bit,
-/// `|e(hi) − e(lo)| + 54`. Why not always [`EXACT_PAIR_BITS`]: the node width `w` is such a
+/// `hi + lo` exactly ([`pair_span_bits`] rounded up to whole words). Why not always [`EXACT_PAIR_BITS`]: the node width `w` is such a
 /// pair and multiplies every coefficient of a Taylor shift, and a product with a 2 176-bit
 /// operand cost astro-float several times one of the tier's own width (issue 11:
 /// Chebyshev T₈₀'s isolation spent a fifth of its time in those products).
@@ -253,7 +252,7 @@ fn exact_pair_bits(hi: f64, lo: f64) -> usize {
     if hi == 0.0 || lo == 0.0 {
         return 64;
     }
-    let span = (binary_exponent(hi) - binary_exponent(lo)).unsigned_abs() as usize + 54;
+    let span = pair_span_bits(hi, lo) as usize;
     span.div_ceil(64).saturating_mul(64).min(EXACT_PAIR_BITS)
 }
 

@@ -17,6 +17,7 @@ use std::cell::Cell;
 use f256::f256;
 
 use crate::double_double::{Dd, two_sum};
+use crate::scalar::pair_span_bits;
 
 /// Unit roundoff bound of the tier: `binary256` rounds to nearest with a 237-bit significand,
 /// so `|δ| ≤ 2^-237`; `2^-236` (as the wide tiers take `2^(1 − bits)`) leaves a factor 2.
@@ -62,16 +63,11 @@ pub(crate) fn oct(x: f64) -> f256 {
     f256::from(x)
 }
 
-/// `hi + lo` exactly, when the pair's bits fit the 237-bit significand (from the carry above
-/// `hi`'s leading bit down to `lo`'s last bit); `None` otherwise.
+/// `hi + lo` exactly, when the pair's bits ([`pair_span_bits`]) fit the 237-bit significand
+/// (with one bit to spare); `None` otherwise.
 pub(crate) fn oct_pair(hi: f64, lo: f64) -> Option<f256> {
-    if hi == 0.0 || lo == 0.0 {
-        return Some(oct(hi) + oct(lo));
-    }
-    let span = (crate::scalar::binary_exponent(hi) - crate::scalar::binary_exponent(lo))
-        .unsigned_abs()
-        + 54;
-    (span <= FRACTION_BITS).then(|| oct(hi) + oct(lo))
+    let fits = hi == 0.0 || lo == 0.0 || pair_span_bits(hi, lo) <= FRACTION_BITS;
+    fits.then(|| oct(hi) + oct(lo))
 }
 
 /// The sign, unbiased exponent and 237-bit significand (as `(top 109 bits, low 128 bits)`)

@@ -114,6 +114,14 @@ pub(crate) fn binary_exponent(x: f64) -> i32 {
     e as i32 + (63 - m.unsigned_abs().leading_zeros() as i32)
 }
 
+/// Significand bits that hold `hi + lo` exactly (a TwoSum pair, both finite and non-zero):
+/// from the carry above `hi`'s leading bit down to `lo`'s last bit, `|e(hi) − e(lo)| + 54`
+/// (an over-count when `lo` is subnormal, whose last bit lies above `e(lo) − 52`). The wide
+/// tiers size their exact node widths by it (`multiprec.rs`, `octuple.rs`).
+pub(crate) fn pair_span_bits(hi: f64, lo: f64) -> u32 {
+    (binary_exponent(hi) - binary_exponent(lo)).unsigned_abs() + 54
+}
+
 /// The exact rational value of a finite `f64` (`None` for NaN or ±infinity).
 ///
 /// # Exactness
