@@ -714,6 +714,28 @@ fn magnitude(p: &[f64], r: f64) -> f64 {
     sum * (1.0 + 2.0 * gamma_ratio_upper(2 * p.len()))
 }
 
+/// `$go::<[f64; N]>(args…)` for `$len = N` coefficients from 2 to 11 — exact-size storage,
+/// so that every loop over a node's coefficients is unrolled (degrees 1 to 10) — else
+/// `$other`. One home for which degrees get it: the search ([`run`]) and the one-node test
+/// ([`no_root_on`]).
+macro_rules! exact_size {
+    ($len:expr, $go:ident($($arg:expr),* $(,)?), $other:expr $(,)?) => {
+        match $len {
+            2 => $go::<[f64; 2]>($($arg),*),
+            3 => $go::<[f64; 3]>($($arg),*),
+            4 => $go::<[f64; 4]>($($arg),*),
+            5 => $go::<[f64; 5]>($($arg),*),
+            6 => $go::<[f64; 6]>($($arg),*),
+            7 => $go::<[f64; 7]>($($arg),*),
+            8 => $go::<[f64; 8]>($($arg),*),
+            9 => $go::<[f64; 9]>($($arg),*),
+            10 => $go::<[f64; 10]>($($arg),*),
+            11 => $go::<[f64; 11]>($($arg),*),
+            _ => $other,
+        }
+    };
+}
+
 /// [`BernsteinIsolator::run`] on `(t_min, t_max]` with coefficient storage sized to the
 /// degree: fixed arrays of exactly `n + 1` entries up to degree 10 (loops with constant
 /// bounds), a fixed 25-entry array up to degree 24 (no heap allocation), `Vec` above. The
@@ -755,20 +777,14 @@ pub(crate) fn run(
         }
     }
     let args = (t_min, t_max, s_min, s_max, slack);
-    match p.len() {
-        2 => go::<[f64; 2]>(p, args, first_only, out, splits, stats),
-        3 => go::<[f64; 3]>(p, args, first_only, out, splits, stats),
-        4 => go::<[f64; 4]>(p, args, first_only, out, splits, stats),
-        5 => go::<[f64; 5]>(p, args, first_only, out, splits, stats),
-        6 => go::<[f64; 6]>(p, args, first_only, out, splits, stats),
-        7 => go::<[f64; 7]>(p, args, first_only, out, splits, stats),
-        8 => go::<[f64; 8]>(p, args, first_only, out, splits, stats),
-        9 => go::<[f64; 9]>(p, args, first_only, out, splits, stats),
-        10 => go::<[f64; 10]>(p, args, first_only, out, splits, stats),
-        11 => go::<[f64; 11]>(p, args, first_only, out, splits, stats),
-        12..=25 => go::<Cap<25>>(p, args, first_only, out, splits, stats),
-        _ => go::<Vec<f64>>(p, args, first_only, out, splits, stats),
-    }
+    exact_size!(
+        p.len(),
+        go(p, args, first_only, out, splits, stats),
+        match p.len() {
+            12..=25 => go::<Cap<25>>(p, args, first_only, out, splits, stats),
+            _ => go::<Vec<f64>>(p, args, first_only, out, splits, stats),
+        }
+    )
 }
 
 /// How [`BernsteinIsolator::split`] cuts a node.
@@ -914,20 +930,10 @@ pub(crate) fn no_root_on(p: &[f64], t_min: f64, t_max: f64, ends: (i8, i8), slac
             .is_some_and(|iso| matches!(iso.classify(&iso.top), Class::Empty))
     }
     let ordered = t_min.partial_cmp(&t_max) == Some(std::cmp::Ordering::Less);
-    if !ordered || ends.0 == 0 || ends.0 != ends.1 {
+    if !ordered || ends.0 == 0 || ends.0 != ends.1 || p.len() < 4 {
         return false;
     }
-    match p.len() {
-        4 => go::<[f64; 4]>(p, t_min, t_max, ends, slack),
-        5 => go::<[f64; 5]>(p, t_min, t_max, ends, slack),
-        6 => go::<[f64; 6]>(p, t_min, t_max, ends, slack),
-        7 => go::<[f64; 7]>(p, t_min, t_max, ends, slack),
-        8 => go::<[f64; 8]>(p, t_min, t_max, ends, slack),
-        9 => go::<[f64; 9]>(p, t_min, t_max, ends, slack),
-        10 => go::<[f64; 10]>(p, t_min, t_max, ends, slack),
-        11 => go::<[f64; 11]>(p, t_min, t_max, ends, slack),
-        _ => false,
-    }
+    exact_size!(p.len(), go(p, t_min, t_max, ends, slack), false)
 }
 
 /// Whether `p` has few roots on `(lo, hi]` by a rough count: at most one sign variation of
