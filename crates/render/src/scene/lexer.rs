@@ -136,8 +136,8 @@ impl<'a> Iterator for TextLines<'a> {
         }
         // Searched as bytes: a line end is ASCII, never part of a longer UTF-8 character, and
         // a byte search skips the decoding of every character (issue 12: NFF files of 66 430
-        // lines).
-        let end = self.rest.bytes().position(|b| b == b'\n' || b == b'\r');
+        // lines). `memchr2` tests 32 bytes a step where a byte loop tested one.
+        let end = memchr::memchr2(b'\n', b'\r', self.rest.as_bytes());
         let (line, rest) = match end {
             Some(i) => {
                 let end = if self.rest[i..].starts_with("\r\n") {
