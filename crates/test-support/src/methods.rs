@@ -27,7 +27,7 @@ const SCHUR_SWEEPS_PER_EIGENVALUE: usize = 30;
 /// eigenvalues of `C − σI` are `λ − σ`, and an off-centre `σ` breaks the symmetry.
 const RETRY_SHIFTS: [f64; 3] = [0.0, 0.3125, -0.2734375];
 
-/// Number of companion solves that needed a shifted retry (see [`RETRY_SHIFTS`]), and number
+/// Number of companion solves that needed a shifted retry (at the shifts `RETRY_SHIFTS`), and number
 /// that failed even so, since the start of the process.
 pub static COMPANION_RETRIES: AtomicU64 = AtomicU64::new(0);
 /// See [`COMPANION_RETRIES`].

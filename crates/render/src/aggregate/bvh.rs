@@ -36,7 +36,7 @@ pub const MAX_LEAF_ITEMS: usize = 4;
 
 /// Depth limit of the binary tree the SAH builds (the root has depth 1): a node this deep
 /// becomes a leaf whatever it holds. Each level of the 4-wide tree takes at least one binary
-/// level, so its depth is bounded too, and with it the fixed traversal stack ([`STACK`]).
+/// level, so its depth is bounded too, and with it the fixed traversal stack (`STACK` entries).
 pub const MAX_DEPTH: usize = 64;
 
 /// Children of a node of the traversed tree at most.
