@@ -62,6 +62,7 @@
 //! | `CERT_SAFETY` = 2 (`tracked.rs`) | factor on the certificate bound | relative | covers the neglected second-order terms |
 //! | `CERT_WIDTH_REL` = 1e-6 (`driver.rs`) | widest component of `abs(ê) ≤ Ē` accepted | relative to the `u`-range | its midpoint is then well within Newton's reach |
 //! | `VANISH_REL` = 2⁻²⁶ (`driver.rs`) | a coefficient of `g(u_r, v)` counts as zero | relative to its terms | `u_r` is known to `x_tol`; `√ε` leaves room for `x_tol` up to ~1e-9 |
+//! | `NEAR_PAIR_REL` = 1e-6 (`driver.rs`) | two `u`-candidates this close are the halves of a split double root, each known only to their gap | relative to the `u`-range | as `CERT_WIDTH_REL`; rounding splits a double root by about `√ε` of the scale |
 //! | `NEAR_DOUBLE_REL` = 2⁻²⁶ (`driver.rs`) | a critical point of the `f64` eliminant is a candidate double root | relative to its terms | far above a double root's rounding; spurious candidates are verified |
 //! | `NEWTON_MAX_STEP_REL` = 1e-3, `NEWTON_STEPS` = 4 (`driver.rs`) | largest polish step; polish iterations | relative to the box; count | a larger step means the candidate was not near this root |
 //! | `MERGE_X_TOLS` = 4, `U_ERR_X_TOLS` = 2 (`driver.rs`) | roots merged within `4·x_tol`; a `u`-candidate's error `2·x_tol` | multiples of `x_tol` | refinement to `x_tol` plus the polish's movement |
