@@ -43,6 +43,7 @@
 //! | [`surface::ROOT_X_TOL_REL`] = 2⁻³³ | root of the ray polynomial, in `t` | rel. to the box diagonal / `\|d\|` | far below a pixel at any distance; refinement is superlinear, so it is cheap |
 //! | [`surface::REDUCED_ROOT_X_TOL_REL`] = 2⁻²³ | root of a ray that only the double-double restriction decides, above the exact-restriction degree | rel. to the box diagonal / `\|d\|` | the last certified try before "undecided"; still far below a pixel; counted in `--stats` |
 //! | [`surface::ENTRY_MARGIN_REL`] = 1e-9 | how far before a bounding-volume entry the root search starts | rel. to `\|t0\| + chord` | far above the slab test's rounding, so a hit on the entry face is kept |
+//! | `PRUNE_SLACK_REL` = 2e-9 (`aggregate/bvh.rs`) | how far beyond the nearest hit so far a hierarchy node may start and still be visited | rel. to `\|entry\| + chord` | twice `ENTRY_MARGIN_REL` (asserted), so a hit reported just before its box's entry is never pruned by one it ties with |
 //! | [`surface::SINGULAR_P_ERR_REL`] = 1e-9 | error box of a hit at a singular point (`∇F ≈ 0`) | rel. to the object's size | heuristic, only where `\|F\|/\|∇F\|` is meaningless (counted) |
 //! | `SPHERE_CLIP_MARGIN` = 1e-9 | widening of a bounding/clipping sphere and its interval | rel. | far above the few roundings, so a touching ray is never clipped |
 //! | [`surface::HIT_RESIDUAL_REL`] = 1e-7 | accepted 3-D residual `\|S(u, v) − R(t)\|` of a patch hit | rel. to piece diagonal + `\|O'\|` + `\|t'D\|` | 100 × groebner's `DEFAULT_F_TOL_REL` (asserted at compile time) |
