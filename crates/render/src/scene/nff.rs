@@ -251,7 +251,7 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<ValidScene, SceneError> {
 
 /// An upper bound on the objects of an NFF text, for reserving the object arrays once: every
 /// object takes at least one line. Grown by doubling instead, balls-s5's 66 431 objects took
-/// 16 reallocations, 84 MB allocated and each object copied about once more (issue 12). The
+/// 16 reallocations, 82 MiB allocated and each object copied about once more (issue 12). The
 /// line-end bytes plus one bound the lines; a `\r\n` pair counts twice, which only reserves
 /// address space that is never touched.
 fn object_capacity(text: &str) -> usize {
