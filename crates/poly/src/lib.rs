@@ -67,6 +67,7 @@
 //! | `ETA` `η = 2^-1074` (`univariate.rs`) | error of one rounding that underflows | absolute | the smallest subnormal; the absolute term of every error bound |
 //! | [`DD_UNIT`] `= 8u²` | error of one double-double operation | relative | covers the proven `3u²`, `2u²`, `5u²` of Joldes, Muller & Popescu (2017) for sum, scalar product and product |
 //! | `OCT_UNIT` `= 2^-236` (`octuple.rs`) | error of one `binary256` operation | relative | twice its unit roundoff `2^-237`, as the wider tiers take `2^(1 − bits)`; underflow is flagged, not bounded |
+//! | `OCT_BOUND_WIDEN_EXP` `= −200` (`multiprec.rs`) | widening `1 + 2^-200` of a bound formed in `binary256` | relative | covers its four roundings of `≤ 2^-237`; exact in `binary256` |
 //! | [`gamma`]`(k)` | error of `k` chained operations | relative | Higham §3.1 |
 //! | [`RootOptions::x_tol`], [`DEFAULT_X_TOL`] `= 1e-10` | distance of a returned root from the true one | absolute | the caller's; the default suits unit-sized geometry |
 //! | [`RootOptions::rel_tol`] (default 0) | the same, over `|root|`, combined as `max(x_tol, rel_tol·|root|)` | relative | the caller's; `< 1` so that 0 is never an answer for every root |

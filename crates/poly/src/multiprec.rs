@@ -172,6 +172,11 @@ impl Arith for DdArith {
     }
 }
 
+/// The octuple tier widens a bound it forms by `1 + 2^OCT_BOUND_WIDEN_EXP` (relative): the
+/// bound takes four roundings of at most `2^-237` each, which `2^-200` covers many times over,
+/// and `1 + 2^-200` is exact in `binary256` (not in `f64`).
+const OCT_BOUND_WIDEN_EXP: i32 = -200;
+
 impl Arith for Oct {
     type T = f256;
     fn exact_f64(&self, x: f64) -> f256 {
@@ -208,9 +213,8 @@ impl Arith for Oct {
         }
         // γ(k)·mag·mult ≤ 2k·u·mag·mult for k·u ≤ 1/2, formed in binary256 (its range holds
         // it whatever f64 would underflow to) from exact factors (2k·u is an integer times a
-        // power of two): four roundings of at most 2^-237 each, covered by the factor
-        // 1 + 2^-200 (exact in binary256, not in f64).
-        let widen = oct(1.0) + oct(2f64.powi(-200));
+        // power of two), then widened by `1 + 2^OCT_BOUND_WIDEN_EXP`.
+        let widen = oct(1.0) + oct(2f64.powi(OCT_BOUND_WIDEN_EXP));
         let bound = (oct(2.0 * k as f64 * OCT_UNIT) * oct(*scale) * oct(mult) + oct(tiny)) * widen;
         if !bound.is_finite() {
             return 0;
