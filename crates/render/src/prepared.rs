@@ -218,6 +218,9 @@ fn build_surface(
             crate::surface::SmoothPolygon::new(vertices, normals)?,
             world_from_shape,
         ),
+        ShapeKind::Mesh { mesh } => {
+            place(crate::surface::TriangleMesh::new(mesh)?, world_from_shape)
+        }
     })
 }
 

@@ -22,8 +22,10 @@ use super::model::{
     LookAtCamera, Material, Object, ObjectTransform, Rgb, Scene, ShapeKind, StamCamera, Texture,
     Viewport, World,
 };
+use super::obj::parse_obj;
 use super::source::{
-    MAX_CONTROL_POINT_BYTES, MAX_SCENE_BYTES, MAX_TEXTURE_BYTES, MAX_TEXTURE_TEXELS, read_bounded,
+    MAX_CONTROL_POINT_BYTES, MAX_MESH_BYTES, MAX_SCENE_BYTES, MAX_TEXTURE_BYTES,
+    MAX_TEXTURE_TEXELS, read_bounded,
 };
 use super::syntax::{
     Block, Command, Entry, Key, SceneAst, ShapeType, TextureType, Value, parse_syntax,
@@ -1193,6 +1195,7 @@ fn build_shape(f: &Fields<'_>, shape: ShapeType, base: &Path) -> Result<ShapeKin
         ShapeType::BezierPatch | ShapeType::BezierMesh => {
             read_patches(f, shape == ShapeType::BezierMesh, base, &detail)?
         }
+        ShapeType::Mesh => read_mesh(f, base)?,
         ShapeType::Cone | ShapeType::Cylinder => {
             let (r0, r1) = if shape == ShapeType::Cone {
                 let r0 = f.required_number(Key::BaseRadius, &detail)?.0;
@@ -1278,14 +1281,7 @@ fn read_patches(
             },
         )
     };
-    let bytes = read_bounded(&path, MAX_CONTROL_POINT_BYTES).map_err(|e| fail(e.to_string()))?;
-    let text = String::from_utf8(bytes).map_err(|e| {
-        fail(format!(
-            "not UTF-8 text (byte {} is 0x{:02X})",
-            e.utf8_error().valid_up_to(),
-            e.as_bytes()[e.utf8_error().valid_up_to()]
-        ))
-    })?;
+    let text = read_text(&path, MAX_CONTROL_POINT_BYTES).map_err(fail)?;
     let patches = if mesh {
         parse_bpt(&text)
     } else {
@@ -1293,6 +1289,37 @@ fn read_patches(
     }
     .map_err(|e| fail(e.to_string()))?;
     Ok(ShapeKind::BezierPatches { patches, method })
+}
+
+/// The text of a file the scene names (at most `limit` bytes, UTF-8), or why not.
+fn read_text(path: &Path, limit: u64) -> Result<String, String> {
+    let bytes = read_bounded(path, limit).map_err(|e| e.to_string())?;
+    String::from_utf8(bytes).map_err(|e| {
+        format!(
+            "not UTF-8 text (byte {} is 0x{:02X})",
+            e.utf8_error().valid_up_to(),
+            e.as_bytes()[e.utf8_error().valid_up_to()]
+        )
+    })
+}
+
+/// `File Name = FILE` of a `MESH`: a Wavefront OBJ file read relative to the scene; errors in
+/// it name the file, line and column.
+fn read_mesh(f: &Fields<'_>, base: &Path) -> Result<ShapeKind, SceneError> {
+    let (file, span) = f.required_path(Key::FileName)?;
+    let path = base.join(file);
+    let fail = |reason: String| {
+        SceneError::at(
+            span,
+            ErrorKind::FileRead {
+                path: path.display().to_string(),
+                reason,
+            },
+        )
+    };
+    let text = read_text(&path, MAX_MESH_BYTES).map_err(fail)?;
+    let mesh = parse_obj(&text).map_err(|e| fail(e.to_string()))?;
+    Ok(ShapeKind::Mesh { mesh })
 }
 
 #[cfg(test)]

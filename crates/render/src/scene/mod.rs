@@ -13,6 +13,7 @@ mod expr_tests;
 mod lexer;
 mod model;
 mod nff;
+mod obj;
 mod placement;
 mod print;
 mod source;
@@ -23,7 +24,7 @@ pub use bpt::{BptError, MAX_BPT_PATCHES, parse_bpt};
 pub use control_net::{ControlNet, MAX_PATCH_DEGREE, PatchError};
 pub use model::{
     BoundingVolume, CameraSpec, CheckerTexture, Illumination, ImageTexture, InvalidModel, Light,
-    LookAtCamera, Material, Object, ObjectTransform, Rgb, Scene, SceneInvalid, ShapeKind,
+    LookAtCamera, Material, MeshData, Object, ObjectTransform, Rgb, Scene, SceneInvalid, ShapeKind,
     StamCamera, Texture, Viewport, World,
 };
 
@@ -36,10 +37,13 @@ pub use error::{ErrorKind, MAX_MESSAGE_CHARS, MAX_QUOTED_CHARS, SceneError, Span
 pub use expr::{Axis, BinOp, Expr, ExprKind, MAX_EQUATION_DEGREE, MAX_TERM_PRODUCTS, Spanned};
 pub use model::MAX_SUPERQUADRIC_POWER;
 pub use nff::{MAX_NFF_VERTICES, is_nff, nff_material, parse_nff};
+pub use obj::{ObjError, parse_obj};
 pub use placement::Placement;
 pub(crate) use placement::cone_axis;
 pub use print::print;
-pub use source::{MAX_CONTROL_POINT_BYTES, MAX_SCENE_BYTES, MAX_TEXTURE_BYTES, MAX_TEXTURE_TEXELS};
+pub use source::{
+    MAX_CONTROL_POINT_BYTES, MAX_MESH_BYTES, MAX_SCENE_BYTES, MAX_TEXTURE_BYTES, MAX_TEXTURE_TEXELS,
+};
 pub use syntax::{
     Block, Command, Entry, Key, MAX_EXPR_DEPTH, MAX_NESTING, SceneAst, ShapeType, TextureType,
     Value, parse_syntax,

@@ -291,6 +291,12 @@ pub enum ShapeKind {
         /// Whether flat disks close the ends (NFF's cones are open).
         caps: bool,
     },
+    /// A triangle mesh read from a Wavefront OBJ file (`MESH`, `File Name`), flat triangles or
+    /// triangles shaded with interpolated vertex normals.
+    Mesh {
+        /// Positions, normals and triangles.
+        mesh: MeshData,
+    },
     /// A planar polygon with a normal at each vertex (NFF `pp`), shaded with the normals
     /// interpolated across it.
     SmoothPolygon {
@@ -299,6 +305,66 @@ pub enum ShapeKind {
         /// One non-zero normal per vertex.
         normals: Vec<DVec3>,
     },
+}
+
+/// The geometry of a triangle mesh (`Type = MESH`, [`parse_obj`](super::parse_obj)):
+/// triangles indexing positions and, for smooth triangles, vertex normals.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MeshData {
+    /// Vertex positions.
+    pub positions: Vec<DVec3>,
+    /// Vertex normals (any length, not zero where a triangle uses them).
+    pub normals: Vec<DVec3>,
+    /// Each triangle's three indices into `positions`.
+    pub triangles: Vec<[u32; 3]>,
+    /// Each triangle's three indices into `normals`, or `None` for a flat triangle (shaded
+    /// with its own normal); one entry per triangle.
+    pub triangle_normals: Vec<Option<[u32; 3]>>,
+}
+
+impl MeshData {
+    /// At least one triangle; one normal entry per triangle; every index in range; positions
+    /// finite; used normals finite and non-zero. Triangles of zero area are allowed (meshes
+    /// often have them): they have no surface, and the tracer leaves them out.
+    pub fn validate(&self) -> Result<(), InvalidModel> {
+        if self.triangles.is_empty() {
+            return Err(InvalidModel::new("File Name", "the mesh has no triangle"));
+        }
+        if self.triangle_normals.len() != self.triangles.len() {
+            return Err(InvalidModel::new(
+                "File Name",
+                "the mesh needs one normal entry per triangle",
+            ));
+        }
+        if !self.positions.iter().all(|p| p.is_finite()) {
+            return Err(InvalidModel::new(
+                "File Name",
+                "a mesh position is not finite",
+            ));
+        }
+        let np = self.positions.len();
+        for (t, n) in self.triangles.iter().zip(&self.triangle_normals) {
+            if t.iter().any(|&i| i as usize >= np) {
+                return Err(InvalidModel::new(
+                    "File Name",
+                    "a mesh triangle names a vertex that does not exist",
+                ));
+            }
+            for &i in n.iter().flatten() {
+                let normal = self.normals.get(i as usize).ok_or(InvalidModel::new(
+                    "File Name",
+                    "a mesh triangle names a normal that does not exist",
+                ))?;
+                if !normal.is_finite() || *normal == DVec3::ZERO {
+                    return Err(InvalidModel::new(
+                        "File Name",
+                        "a mesh normal is zero or not finite",
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
 }
 
 impl ShapeKind {
@@ -322,6 +388,7 @@ impl ShapeKind {
             } if base_radius == apex_radius => "CYLINDER",
             ShapeKind::Cone { .. } => "CONE",
             ShapeKind::SmoothPolygon { .. } => "POLYGON_PATCH",
+            ShapeKind::Mesh { .. } => "MESH",
         }
     }
 
@@ -451,6 +518,7 @@ impl ShapeKind {
                 }
                 Ok(())
             }
+            ShapeKind::Mesh { mesh } => mesh.validate(),
             ShapeKind::SmoothPolygon { vertices, normals } => {
                 if vertices.len() < 3 {
                     return Err(InvalidModel::new("vertices", "a polygon needs at least 3"));

@@ -26,6 +26,10 @@ pub const MAX_TEXTURE_TEXELS: u64 = 1 << 24;
 /// bicubic patches take 15 kB, so this is thousands of such models.
 pub const MAX_CONTROL_POINT_BYTES: u64 = 64 << 20;
 
+/// The largest OBJ mesh file read, in bytes (256 MiB): about four million triangles with
+/// normals; the prepared mesh keeps a few hundred bytes per triangle.
+pub const MAX_MESH_BYTES: u64 = 256 << 20;
+
 /// Reads all of `path`, a regular file of at most `limit` bytes.
 ///
 /// # Errors

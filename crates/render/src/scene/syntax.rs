@@ -197,11 +197,13 @@ pub enum ShapeType {
     Cone,
     /// `CYLINDER`: `Base`, `Apex`, `Radius`, `Caps`.
     Cylinder,
+    /// `MESH`: `File Name` (a Wavefront OBJ file of triangles or polygons).
+    Mesh,
 }
 
 impl ShapeType {
     /// Every type.
-    pub const ALL: [ShapeType; 12] = [
+    pub const ALL: [ShapeType; 13] = [
         ShapeType::Sphere,
         ShapeType::Plane,
         ShapeType::Polygon,
@@ -214,6 +216,7 @@ impl ShapeType {
         ShapeType::BezierMesh,
         ShapeType::Cone,
         ShapeType::Cylinder,
+        ShapeType::Mesh,
     ];
 
     /// The type as written after `Type =`.
@@ -231,6 +234,7 @@ impl ShapeType {
             ShapeType::BezierMesh => "BEZIER_MESH",
             ShapeType::Cone => "CONE",
             ShapeType::Cylinder => "CYLINDER",
+            ShapeType::Mesh => "MESH",
         }
     }
 
@@ -254,6 +258,7 @@ impl ShapeType {
                 Key::Caps,
             ],
             ShapeType::Cylinder => &[Key::Base, Key::Apex, Key::Radius, Key::Caps],
+            ShapeType::Mesh => &[Key::FileName],
         }
     }
 }
@@ -419,7 +424,7 @@ keys! {
     Method => "Method",
     /// `Resolution = (rx, ry)` (`#viewport`).
     Resolution => "Resolution",
-    /// `File Name = name` (`#save`, `#texture`).
+    /// `File Name = name` (`#save`, `#texture`, `MESH`).
     FileName => "File Name",
     /// `Name = word` (`#texture`).
     Name => "Name",
@@ -544,6 +549,7 @@ fn object_key_use(shape: Option<ShapeType>, key: Key) -> KeyUse {
         Key::A | Key::B | Key::C | Key::D | Key::Size => V::Vector,
         Key::ControlPoints => V::ControlPoints,
         Key::Method => V::Word,
+        Key::FileName => V::Path,
         _ => return KeyUse::Unknown,
     };
     match shape {
@@ -949,7 +955,7 @@ impl<'a> Parser<'a> {
                 }
             }
             ValueKind::Shape => {
-                const TYPES: &str = "SPHERE, PLANE, POLYGON, TRIANGLE, BOX, SUPERQUADRIC, TORUS, ALGEBRAIC_SURFACE, BEZIER_PATCH, BEZIER_MESH, CONE or CYLINDER";
+                const TYPES: &str = "SPHERE, PLANE, POLYGON, TRIANGLE, BOX, SUPERQUADRIC, TORUS, ALGEBRAIC_SURFACE, BEZIER_PATCH, BEZIER_MESH, CONE, CYLINDER or MESH";
                 let (w, span) = self.word_value(key, "an object type")?;
                 match ShapeType::ALL
                     .into_iter()
@@ -1608,7 +1614,7 @@ mod tests {
             ),
             (
                 "#object Type = CUBE",
-                "t.scene:1:16: unknown value `CUBE` for `Type` (expected SPHERE, PLANE, POLYGON, TRIANGLE, BOX, SUPERQUADRIC, TORUS, ALGEBRAIC_SURFACE, BEZIER_PATCH, BEZIER_MESH, CONE or CYLINDER)",
+                "t.scene:1:16: unknown value `CUBE` for `Type` (expected SPHERE, PLANE, POLYGON, TRIANGLE, BOX, SUPERQUADRIC, TORUS, ALGEBRAIC_SURFACE, BEZIER_PATCH, BEZIER_MESH, CONE, CYLINDER or MESH)",
             ),
             (
                 "#world Shadows = MAYBE",

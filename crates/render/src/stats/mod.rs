@@ -213,11 +213,13 @@ pub enum SurfaceKind {
     Cylinder,
     /// [`SmoothPolygon`](crate::surface::SmoothPolygon) (NFF's polygonal patch: vertex normals).
     PolygonPatch,
+    /// [`TriangleMesh`](crate::surface::TriangleMesh) (an OBJ file's triangles).
+    Mesh,
 }
 
 impl SurfaceKind {
     /// Number of kinds.
-    pub const COUNT: usize = 12;
+    pub const COUNT: usize = 13;
     /// Every kind, in [`SurfaceKind::index`] order.
     pub const ALL: [SurfaceKind; SurfaceKind::COUNT] = [
         SurfaceKind::Sphere,
@@ -232,6 +234,7 @@ impl SurfaceKind {
         SurfaceKind::Cone,
         SurfaceKind::Cylinder,
         SurfaceKind::PolygonPatch,
+        SurfaceKind::Mesh,
     ];
 
     /// Position in [`SurfaceKind::ALL`] and in per-kind statistics arrays.
@@ -254,6 +257,7 @@ impl SurfaceKind {
             SurfaceKind::Cone => "CONE",
             SurfaceKind::Cylinder => "CYLINDER",
             SurfaceKind::PolygonPatch => "POLYGON_PATCH",
+            SurfaceKind::Mesh => "MESH",
         }
     }
 }

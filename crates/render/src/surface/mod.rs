@@ -26,13 +26,14 @@ mod bezier_mesh;
 mod bezier_patch;
 mod cone;
 mod implicit;
-mod mesh;
 mod plane;
 mod polygon;
+mod smooth_polygon;
 mod sphere;
 mod superquadric;
 mod torus;
 mod transformed;
+mod triangle_mesh;
 
 pub use aabox::AaBox;
 pub use algebraic::Algebraic;
@@ -45,13 +46,14 @@ pub use implicit::{
     ENTRY_MARGIN_REL, EXACT_RESTRICTION_MAX_DEGREE, Implicit, ImplicitFn, REDUCED_ROOT_X_TOL_REL,
     ROOT_X_TOL_REL, SINGULAR_P_ERR_REL,
 };
-pub use mesh::SmoothPolygon;
 pub use plane::Plane;
 pub use polygon::Polygon;
+pub use smooth_polygon::SmoothPolygon;
 pub use sphere::Sphere;
 pub use superquadric::{MAX_SUPERQUADRIC_POWER, Superquadric};
 pub use torus::Torus;
 pub use transformed::Transformed;
+pub use triangle_mesh::TriangleMesh;
 
 /// The result of a nearest-hit query: cheap, no normal yet.
 #[derive(Clone, Copy, Debug, PartialEq)]
