@@ -1271,43 +1271,35 @@ fn read_patches(
         }
         _ => return Err(Fields::wrong(field, "a file name or 16 points `(x, y, z)`")),
     };
-    let path = base.join(file);
-    let fail = |reason: String| {
-        SceneError::at(
-            span,
-            ErrorKind::FileRead {
-                path: path.display().to_string(),
-                reason,
-            },
-        )
-    };
-    let text = read_text(&path, MAX_CONTROL_POINT_BYTES).map_err(fail)?;
-    let patches = if mesh {
-        parse_bpt(&text)
-    } else {
-        parse_control_points(&text).map(|p| vec![p])
-    }
-    .map_err(|e| fail(e.to_string()))?;
+    let patches = read_named(file, span, base, MAX_CONTROL_POINT_BYTES, |text| {
+        if mesh {
+            parse_bpt(text)
+        } else {
+            parse_control_points(text).map(|p| vec![p])
+        }
+    })?;
     Ok(ShapeKind::BezierPatches { patches, method })
-}
-
-/// The text of a file the scene names (at most `limit` bytes, UTF-8), or why not.
-fn read_text(path: &Path, limit: u64) -> Result<String, String> {
-    let bytes = read_bounded(path, limit).map_err(|e| e.to_string())?;
-    String::from_utf8(bytes).map_err(|e| {
-        format!(
-            "not UTF-8 text (byte {} is 0x{:02X})",
-            e.utf8_error().valid_up_to(),
-            e.as_bytes()[e.utf8_error().valid_up_to()]
-        )
-    })
 }
 
 /// `File Name = FILE` of a `MESH`: a Wavefront OBJ file read relative to the scene; errors in
 /// it name the file, line and column.
 fn read_mesh(f: &Fields<'_>, base: &Path) -> Result<ShapeKind, SceneError> {
     let (file, span) = f.required_path(Key::FileName)?;
-    let path = base.join(file);
+    let mesh = read_named(file, span, base, MAX_MESH_BYTES, parse_obj)?;
+    Ok(ShapeKind::Mesh { mesh })
+}
+
+/// Reads the file `name` (relative to `base`; at most `limit` bytes of UTF-8 text) that the
+/// value at `span` names, and parses it: a read or parse error names the value's place and the
+/// file, and the parser's message its place in the file.
+fn read_named<T, E: std::fmt::Display>(
+    name: &str,
+    span: &Span,
+    base: &Path,
+    limit: u64,
+    parse: impl FnOnce(&str) -> Result<T, E>,
+) -> Result<T, SceneError> {
+    let path = base.join(name);
     let fail = |reason: String| {
         SceneError::at(
             span,
@@ -1317,9 +1309,15 @@ fn read_mesh(f: &Fields<'_>, base: &Path) -> Result<ShapeKind, SceneError> {
             },
         )
     };
-    let text = read_text(&path, MAX_MESH_BYTES).map_err(fail)?;
-    let mesh = parse_obj(&text).map_err(|e| fail(e.to_string()))?;
-    Ok(ShapeKind::Mesh { mesh })
+    let bytes = read_bounded(&path, limit).map_err(|e| fail(e.to_string()))?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        fail(format!(
+            "not UTF-8 text (byte {} is 0x{:02X})",
+            e.utf8_error().valid_up_to(),
+            e.as_bytes()[e.utf8_error().valid_up_to()]
+        ))
+    })?;
+    parse(&text).map_err(|e| fail(e.to_string()))
 }
 
 #[cfg(test)]
