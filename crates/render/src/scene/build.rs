@@ -1286,7 +1286,9 @@ fn read_patches(
 fn read_mesh(f: &Fields<'_>, base: &Path) -> Result<ShapeKind, SceneError> {
     let (file, span) = f.required_path(Key::FileName)?;
     let mesh = read_named(file, span, base, MAX_MESH_BYTES, parse_obj)?;
-    Ok(ShapeKind::Mesh { mesh })
+    Ok(ShapeKind::Mesh {
+        mesh: Box::new(mesh),
+    })
 }
 
 /// Reads the file `name` (relative to `base`; at most `limit` bytes of UTF-8 text) that the

@@ -294,8 +294,9 @@ pub enum ShapeKind {
     /// A triangle mesh read from a Wavefront OBJ file (`MESH`, `File Name`), flat triangles or
     /// triangles shaded with interpolated vertex normals.
     Mesh {
-        /// Positions, normals and triangles.
-        mesh: MeshData,
+        /// Positions, normals and triangles (boxed: every object pays for the largest shape,
+        /// and four vectors would make each sphere of an NFF scene 24 bytes larger).
+        mesh: Box<MeshData>,
     },
     /// A planar polygon with a normal at each vertex (NFF `pp`), shaded with the normals
     /// interpolated across it.
@@ -306,6 +307,10 @@ pub enum ShapeKind {
         normals: Vec<DVec3>,
     },
 }
+
+// Every object of a scene holds a `ShapeKind`, so its size is paid 66 430 times by the largest
+// sphereflake (its peak memory is one of issue 12's targets): large shapes go behind a box.
+const _: () = assert!(size_of::<ShapeKind>() <= 80, "a shape fits in 80 bytes");
 
 /// The geometry of a triangle mesh (`Type = MESH`, [`parse_obj`](super::parse_obj)):
 /// triangles indexing positions and, for smooth triangles, vertex normals.
