@@ -15,7 +15,8 @@ view), lights scaled by 1/√3 (POV-Ray does not normalise three lights; NFF rea
 `cone { … open }` for each cylinder, and textures from the material's parameters: diffuse,
 Phong highlight, reflection (the NFF `Ks`).
 
-    python3 benches/spd/generate.py rings [-s N] OUT_DIR   # writes OUT_DIR/rings[-sN].{nff,pov}
+    python3 benches/spd/generate.py lattice|rings|shells|tree [-s N] OUT_DIR
+        # writes OUT_DIR/NAME[-sN].nff and .pov
 """
 
 import argparse
@@ -55,7 +56,7 @@ class Writer:
 
     def __init__(self, nff, pov):
         self.nff, self.pov = nff, pov
-        self.textures = 0
+        self.declared, self.current = {}, None
         self.pov.write("// POV-Ray 3 scene file, written by benches/spd/generate.py\n")
 
     def background(self, rgb):
@@ -76,22 +77,33 @@ class Writer:
                        "    right     <%g, %g, %g>\n    up        <%g, %g, %g>\n} // camera\n\n"
                        % (*eye, *view, *(-height * c for c in right), *(height * c for c in upv)))
 
-    def light(self, p, lights):
+    def light(self, p, intensity):
+        """NFF lights carry no intensity (readers share one out); POV-Ray's get the
+        generator's, usually `1/√n` for `n` lights."""
         self.nff.write("l %g %g %g\n" % p)
-        k = 1.0 / math.sqrt(lights)
+        k = intensity
         self.pov.write("light_source {\n    <%g, %g, %g> color red %g green %g blue %g\n"
                        "} // light\n\n" % (*p, k, k, k))
 
-    def material(self, rgb, kd, ks, phong, shine):
-        """NFF `f r g b Kd Ks shine T ior` (opaque); POV-Ray texture with the same terms."""
+    def material(self, rgb, kd, ks, phong, shine, ka=0.0):
+        """NFF `f r g b Kd Ks shine T ior` (opaque); a POV-Ray texture with the same terms and
+        the generator's ambient `ka` (NFF has none). Written when it changes; a texture already
+        declared is named again."""
+        key = (rgb, kd, ks, phong, shine, ka)
+        if key == self.current:
+            return
+        self.current = key
         self.nff.write("f %g %g %g %g %g %g 0 0\n" % (*rgb, kd, ks, shine))
-        self.textures += 1
-        finish = "        ambient 0\n        diffuse %g\n" % kd
+        if key in self.declared:
+            self.texture = self.declared[key]
+            return
+        finish = "        ambient %g\n        diffuse %g\n" % (ka, kd)
         if phong:
             finish += "        phong %g  phong_size %g\n" % (phong, shine)
         if ks:
             finish += "        reflection %g\n" % ks
-        self.texture = "txt%03d" % self.textures
+        self.texture = "txt%03d" % (len(self.declared) + 1)
+        self.declared[key] = self.texture
         self.pov.write("#declare %s = texture {\n    pigment {\n        color red %g green %g "
                        "blue %g\n    } // pigment\n    finish {\n%s    } // finish\n} // texture "
                        "%s\n\n" % (self.texture, *rgb, finish, self.texture))
@@ -102,10 +114,11 @@ class Writer:
         self.pov.write("polygon {\n    %d,\n%s\n    texture { %s }\n}\n\n"
                        % (len(vertices), body, self.texture))
 
-    def cylinder(self, base, apex, r):
-        self.nff.write("c\n%g %g %g %g\n%g %g %g %g\n" % (*base, r, *apex, r))
+    def cone(self, base, base_r, apex, apex_r):
+        """An open cone (a cylinder when the radii are equal), NFF's `c`."""
+        self.nff.write("c\n%g %g %g %g\n%g %g %g %g\n" % (*base, base_r, *apex, apex_r))
         self.pov.write("cone {\n    <%g, %g, %g>, %g,\n    <%g, %g, %g>, %g open\n"
-                       "    texture { %s }\n}\n\n" % (*apex, r, *base, r, self.texture))
+                       "    texture { %s }\n}\n\n" % (*apex, apex_r, *base, base_r, self.texture))
 
     def sphere(self, c, r):
         self.nff.write("s %g %g %g %g\n" % (*c, r))
@@ -119,7 +132,7 @@ def rings(w, size):
     eye = (-1.0, -spread, 0.5)
     w.view(eye, (eye[0], eye[1] + 1.0, eye[2]), (0.0, 0.0, 1.0), 45.0, 1.0, 512)
     for p in [(3.0, -spread, 3.0), (-4.0, -spread, 1.0), (2.0, -spread, -4.0)]:
-        w.light(p, 3)
+        w.light(p, 1.0 / math.sqrt(3))
     # The wall: white, just filling the 45° view (plus 1 %) behind the last layer.
     w.material((1.0, 1.0, 1.0), 1.0, 0.0, 0.0, 0.0)
     wy = spread * (size + 1)
@@ -140,23 +153,128 @@ def rings(w, size):
                     prev = k + 4 if k % 5 == 0 else k - 1
                     base = tuple(a + b for a, b in zip(joints[k], (x, y, z)))
                     apex = tuple(a + b for a, b in zip(joints[prev], (x, y, z)))
-                    w.cylinder(base, apex, radius)
+                    w.cone(base, radius, apex, radius)
                     w.sphere(base, radius)
+
+
+def matrix_product(a, b):
+    """4 × 4 matrices acting on row vectors `[x y z 1]` on the left: `p·(a·b)` applies `a`,
+    then `b`."""
+    return [[sum(a[i][k] * b[k][j] for k in range(4)) for j in range(4)] for i in range(4)]
+
+
+def rotation(axis, degrees):
+    """Counter-clockwise about the x (0) or z (2) axis, for row vectors."""
+    c, s = math.cos(math.radians(degrees)), math.sin(math.radians(degrees))
+    m = [[1.0 if i == j else 0.0 for j in range(4)] for i in range(4)]
+    i, j = (1, 2) if axis == 0 else (0, 1)
+    m[i][i], m[i][j], m[j][i], m[j][j] = c, s, -s, c
+    return m
+
+
+def apply(m, p):
+    return tuple(p[0] * m[0][j] + p[1] * m[1][j] + p[2] * m[2][j] + m[3][j] for j in range(3))
+
+
+def tree(w, size):
+    """Aono and Kunii's tree (IEEE CG&A, May 1984): each branch an open cone with a sphere at
+    its tip, two sub-branches grown from the tip by fixed rotations, contractions and a unit
+    lift, over a green field; seven lights. `2^(s+1) − 1` cones and as many spheres (`s = 11`,
+    the default: 4 095)."""
+    w.background((0.078, 0.361, 0.753))
+    w.view((4.5, 0.4, 2.0), (0.0, 0.0, 1.5), (0.0, 0.0, 1.0), 45.0, 1.0, 512)
+    lights = [(-5.0, 5.0, 50.0), (30.0, -30.0, 30.0), (-40.0, -30.0, 20.0), (10.0, 30.0, 40.0),
+              (-30.0, 40.0, 10.0), (50.0, 25.0, 20.0), (-10.0, -60.0, 30.0)]
+    for p in lights:
+        w.light(p, 1.0 / math.sqrt(len(lights)))
+    w.material((0.2, 0.7, 0.2), 1.0, 0.0, 0.0, 0.0)
+    w.polygon([(50.0, 50.0, 0.0), (-50.0, 50.0, 0.0), (-50.0, -50.0, 0.0), (50.0, -50.0, 0.0)])
+    w.material((0.55, 0.4, 0.2), 1.0, 0.0, 0.0, 0.0)
+    # (branching angle about x, divergence about z, contraction) of the two sub-branches.
+    steps = []
+    for angle, divergence, contraction in [(40.0, 90.0, 0.65), (25.0, 140.0 + 90.0, 0.70)]:
+        lift = [[contraction if i == j else 0.0 for j in range(4)] for i in range(4)]
+        lift[3][3], lift[3][2] = 1.0, 1.0
+        steps.append(matrix_product(matrix_product(rotation(0, angle), rotation(2, divergence)),
+                                    lift))
+    width, taper = 0.15, 0.67  # base radius per unit of scale; tip radius / base radius
+
+    def grow(m, scale, depth):
+        base, apex = apply(m, (0.0, 0.0, 0.0)), apply(m, (0.0, 0.0, 1.0))
+        r = scale * width
+        w.cone(base, r, apex, r * taper)
+        w.sphere(apex, r * taper)
+        if depth > 0:
+            for step in steps:
+                grow(matrix_product(step, m), scale * taper, depth - 1)
+
+    grow([[1.0 if i == j else 0.0 for j in range(4)] for i in range(4)], 1.0, size)
+
+
+def shells(w, size):
+    """Pickover's sea shell (IEEE CG&A, November 1989): spheres along a logarithmic spiral,
+    radius `r = e^(0.15·θ)` at `(r·sin θ, r·cos θ, −2r)`, overlapping heavily, many tiny; one
+    light. `180·2^s + 1` spheres (`s = 5`, the default: 5 761)."""
+    w.background((0.078, 0.361, 0.753))
+    w.view((-6.0, -60.0, 35.0), (0.0, 8.0, -15.0), (0.0, 0.0, 1.0), 45.0, 0.5, 512)
+    w.light((-100.0, -100.0, 100.0), 1.0)
+    w.material((1.0, 0.8, 0.4), 0.8, 0.2, 0.5, 10.0)
+    steps = 180 * 2 ** size
+    for i in range(-(steps * 2 // 3), steps // 3 + 1):
+        angle = 3.0 * 6.0 * math.pi * i / steps
+        r = math.exp(0.15 * angle)
+        w.sphere((r * math.sin(angle), r * math.cos(angle), -2.0 * r), r)
+
+
+def lattice(w, size):
+    """A cubic lattice of shiny spheres joined by matte cylinders (red along x, green along y,
+    blue along z) in the unit cube, seen from a corner; six lights. `(s + 1)³` spheres and
+    `3·s·(s + 1)²` cylinders (`s = 12`, the default: 2 197 and 6 084)."""
+    big, small = 0.25 / size, 1.0 / 16.0 / size  # sphere and cylinder radii
+    gap = big * (1.0 - math.sqrt(0.25)) * 0.99  # cylinders start inside the spheres
+    w.background((0.078, 0.361, 0.753))
+    mid = ((size >> 1) + 0.5) / size
+    w.view((mid, 1.0, 1.0 - 1.0 / (size << 1)), (mid, -1.0, -1.0 - 1.0 / (size << 1)),
+           (0.2, 1.0, 0.0), 60.0, 0.0, 512)
+    for p in [(2.0, 0.5, 0.5), (-1.0, 0.5, 0.5), (0.5, 2.0, 0.5), (0.5, -1.0, 0.5),
+              (0.5, 0.5, 2.0), (0.5, 0.5, -1.0)]:
+        w.light(p, 1.0 / math.sqrt(6))
+    colours = [(0.9, 0.1, 0.1), (0.1, 0.9, 0.1), (0.1, 0.1, 0.9)]
+    for x in range(size + 1):
+        for y in range(size + 1):
+            for z in range(size + 1):
+                c = (x / size, y / size, z / size)
+                w.material((0.9, 0.9, 0.9), 0.5, 0.5, 0.5, 37.0)
+                w.sphere(c, big)
+                for axis, n in enumerate((x, y, z)):
+                    if n == size:
+                        continue
+                    w.material(colours[axis], 0.99, 0.0, 0.0, 0.0, ka=0.1)
+                    base, apex = list(c), list(c)
+                    base[axis] += gap
+                    apex[axis] += 1.0 / size - gap
+                    w.cone(tuple(base), small, tuple(apex), small)
+
+
+GENERATORS = {"lattice": (lattice, 12), "rings": (rings, 7), "shells": (shells, 5),
+              "tree": (tree, 11)}
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("scene", choices=["rings"])
-    ap.add_argument("-s", "--size", type=int, default=7, help="size factor (default 7)")
+    ap.add_argument("scene", choices=sorted(GENERATORS))
+    ap.add_argument("-s", "--size", type=int, help="size factor (default: the generator's)")
     ap.add_argument("out_dir")
     args = ap.parse_args()
-    if args.size < 1:
+    generate, default = GENERATORS[args.scene]
+    size = default if args.size is None else args.size
+    if size < 1:
         ap.error("the size factor is at least 1")
-    name = args.scene if args.size == 7 else "%s-s%d" % (args.scene, args.size)
+    name = args.scene if size == default else "%s-s%d" % (args.scene, size)
     os.makedirs(args.out_dir, exist_ok=True)
     base = os.path.join(args.out_dir, name)
     with open(base + ".nff", "w") as nff, open(base + ".pov", "w") as pov:
-        rings(Writer(nff, pov), args.size)
+        generate(Writer(nff, pov), size)
     print(base + ".nff", base + ".pov")
 
 

@@ -513,20 +513,37 @@ fn reflect(coeffs: &mut [f64]) {
 const SPHERE_CLIP_MARGIN: f64 = 1e-9;
 
 /// The parameter interval where the line of `ray` is inside the sphere `(c, r)`, slightly
-/// enlarged ([`SPHERE_CLIP_MARGIN`]), or `None` when the line passes outside it.
+/// enlarged ([`SPHERE_CLIP_MARGIN`]), or `None` when the line certainly passes outside it:
+/// the test and the interval allow for the rounding of the distance computed (below), so a
+/// ray that touches the sphere is neither rejected nor clipped short however far its origin
+/// is from the sphere.
 fn sphere_segment(ray: &Ray, c: DVec3, r: f64) -> Option<Range<f64>> {
     let a = ray.dir.length_squared();
     let oc = ray.origin - c;
-    let r2 = r * r * (1.0 + SPHERE_CLIP_MARGIN);
+    let r2a = r * r * (1.0 + SPHERE_CLIP_MARGIN) * a;
     // Distance² from c to the line times |d|², computed without cancellation: |oc × d|².
-    // Compared before any division: most rays that reach here are rejected by it.
     let d2a = oc.cross(ray.dir).length_squared();
-    if d2a > r2 * a {
+    // Its rounding: each component of `oc × d` (with `oc`'s own rounding) is within
+    // 3ε·|oc|·|d| of the exact one, so the sum of squares is within 2·√3·3ε·√d2a·|oc||d| +
+    // 27ε²·|oc|²|d|² of |oc × d|², and `r2a` within 4ε of its value (`SPHERE_CLIP_MARGIN`
+    // dwarfs that). The margin alone covers the first term while |oc|/r stays below ~10⁵;
+    // the bound keeps far rays right beyond that.
+    let l2 = oc.length_squared() * a;
+    let (e1, e2) = (11.0 * f64::EPSILON, 32.0 * f64::EPSILON * f64::EPSILON * l2);
+    // Compared before any square root or division: most rays that reach here are rejected
+    // by it (squared: `excess > e1·√(d2a·l2)`).
+    let excess = d2a - r2a - e2 - 4.0 * f64::EPSILON * r2a;
+    if excess > 0.0 && excess * excess > e1 * e1 * d2a * l2 {
         return None;
     }
+    if !(d2a.is_finite() && l2.is_finite()) {
+        // Overflow: nothing is decided here.
+        return Some(f64::NEG_INFINITY..f64::INFINITY);
+    }
+    let err = e1 * (d2a * l2).sqrt() + e2 + 4.0 * f64::EPSILON * r2a;
     let inv_a = 1.0 / a;
     let b = oc.dot(ray.dir) * inv_a; // half the linear coefficient, over a
-    let half = (r2 * a - d2a).sqrt() * inv_a;
+    let half = (r2a - d2a + err).max(0.0).sqrt() * inv_a;
     let pad = SPHERE_CLIP_MARGIN * (b.abs() + half) + f64::MIN_POSITIVE;
     Some((-b - half - pad)..(-b + half + pad))
 }
@@ -1493,6 +1510,74 @@ mod tests {
             "moving away"
         );
         assert_eq!(ws.stats.roots.rejected, 0, "no query refused");
+    }
+
+    /// A unit sphere 10¹² units away, off every axis, and rays from near the origin towards it
+    /// passing its centre at distances 0 … 1.5 (many within 10⁻⁴ and 10⁻⁹ of the rim):
+    /// `oc × d` then cancels to a quantity whose rounding (≈ 10⁻⁴) dwarfs the clip margin. Against exact rational arithmetic on
+    /// the stored ray, every line that meets the sphere keeps a segment holding its whole chord
+    /// (both ends outside the sphere, the closest point inside the segment). Without the
+    /// rounding bound (the clip margin alone, 10⁻⁹) rays up to 10⁻⁴ inside the rim were
+    /// rejected: about one in six of those meeting the sphere here.
+    #[test]
+    fn a_far_sphere_keeps_every_chord_of_the_exact_ray() {
+        use rand::{Rng, SeedableRng};
+        let q = |x: f64| poly::rat_from_f64(x).expect("finite");
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(41);
+        let (mut meeting, mut kept_short) = (0, 0);
+        for k in 0..3000 {
+            // A direction and a perpendicular with digits in every place, new for each ray,
+            // so that the cross product's terms cancel and their roundings vary in sign.
+            let along = DVec3::new(
+                rng.gen_range(0.6..0.7),
+                rng.gen_range(0.7..0.8),
+                rng.gen_range(0.1..0.2),
+            )
+            .normalize();
+            let across = along.cross(DVec3::new(0.3, -0.2, 0.9)).normalize();
+            let c = along * 1e12;
+            let miss = match k % 3 {
+                0 => rng.gen_range(0.0..1.5),
+                1 => 1.0 + rng.gen_range(-1e-4..1e-4),
+                _ => 1.0 + rng.gen_range(-1e-9..1e-9),
+            };
+            // The origin moved across the line of centres (finely: it is near 0), the
+            // direction fixed.
+            let ray = Ray::new(across * miss, along);
+            let (o, d) = (ray.origin, ray.dir);
+            // |o + t·d − c|² − 1 for the stored ray, exactly, at a rational t.
+            let f = |t: &Rat| -> Rat {
+                [(o.x, d.x, c.x), (o.y, d.y, c.y), (o.z, d.z, c.z)]
+                    .into_iter()
+                    .map(|(oi, di, ci)| {
+                        let v = q(oi) + t * q(di) - q(ci);
+                        &v * &v
+                    })
+                    .fold(Rat::from_integer(0.into()), |s, v| s + v)
+                    - Rat::from_integer(1.into())
+            };
+            let dd = q(d.x) * q(d.x) + q(d.y) * q(d.y) + q(d.z) * q(d.z);
+            let closest = (q(d.x) * (q(c.x) - q(o.x))
+                + q(d.y) * (q(c.y) - q(o.y))
+                + q(d.z) * (q(c.z) - q(o.z)))
+                / dd;
+            if f(&closest) > Rat::from_integer(0.into()) {
+                continue;
+            }
+            meeting += 1;
+            let Some(seg) = sphere_segment(&ray, c, 1.0) else {
+                panic!("ray {k} (passing at {miss}) meets the sphere but was rejected");
+            };
+            let inside = |t: f64| f(&q(t)) < Rat::from_integer(0.into());
+            if !(q(seg.start) < closest && closest < q(seg.end))
+                || inside(seg.start)
+                || inside(seg.end)
+            {
+                kept_short += 1;
+            }
+        }
+        assert!(meeting > 500, "only {meeting} rays meet the sphere");
+        assert_eq!(kept_short, 0, "segments shorter than the chord");
     }
 
     #[test]

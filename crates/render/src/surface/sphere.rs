@@ -17,6 +17,13 @@ use super::implicit::ImplicitFn;
 use crate::geometry::Bounds3;
 use crate::trivariate::{Eval3, Poly3, RestrictScratch};
 
+/// Relative widening of the sphere's own bounding ball ([`ImplicitFn::bounding_sphere`]):
+/// large enough that the chord it clips holds both roots with room for the closed form's
+/// certifying intervals (which must not reach the range's ends: a root closer to an end than
+/// that defers to the general path), small enough that hardly a ray that misses the sphere
+/// passes the ball. 2⁻²⁰ ≈ 1e-6.
+pub(super) const BALL_MARGIN_REL: f64 = 1.0 / (1u64 << 20) as f64;
+
 /// A sphere, traced through the shared implicit path.
 #[derive(Clone, Debug)]
 pub struct Sphere {
@@ -78,6 +85,14 @@ impl ImplicitFn for Sphere {
             2.0 * d.dot(oc),
             d.length_squared(),
         ]);
+    }
+
+    /// The sphere itself, widened by [`BALL_MARGIN_REL`]: a ray that misses it is rejected by
+    /// a distance test before any polynomial is built (the shells of the SPD, thousands of
+    /// overlapping spheres, send 20 rays past a sphere for every 9 that hit it), and the root
+    /// search covers the chord inside it.
+    fn bounding_sphere(&self) -> Option<(DVec3, f64)> {
+        Some((self.center, self.radius * (1.0 + BALL_MARGIN_REL)))
     }
 
     /// `|p − c|² − r²` is negative exactly inside the ball.
