@@ -327,7 +327,7 @@ fn aggregate_on_flat_boxes_equals_brute_force() {
             DVec3::new(rng.gen_range(-0.5..0.5), rng.gen_range(-0.5..0.5), -1.0)
         };
         let ray = Ray::new(o, d);
-        let fast = agg.nearest(&ray, 0.0..f64::INFINITY, &mut visits, |i| entry(i, &ray));
+        let fast = agg.nearest(&ray, 0.0..f64::INFINITY, &mut visits, |i, _| entry(i, &ray));
         let mut slow: Option<(u32, f64, ())> = None;
         for i in 0..boxes.len() as u32 {
             if let Some((t, ())) = entry(i, &ray)

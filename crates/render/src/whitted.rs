@@ -96,11 +96,17 @@ fn nearest_hit_leaving(
     let mut visits = 0;
     let best = scene
         .aggregate
-        .nearest(ray, t_range.clone(), &mut visits, |i| {
+        .nearest(ray, t_range.clone(), &mut visits, |i, t_max| {
             if Some(i) == leaving {
                 return None;
             }
             let surface = &scene.surfaces[i as usize];
+            // Certainly missed, or every hit beyond the nearest one so far or before the
+            // range: cannot be the answer (nor tie with it).
+            match surface.hit_interval(ray) {
+                Some(hits) if hits.start <= t_max && hits.end >= t_range.start => {}
+                _ => return None,
+            }
             let kind = surface.kind().index();
             ws.stats.per_kind[kind].tests += 1;
             let h = surface.intersect(ray, t_range.clone(), ws)?;

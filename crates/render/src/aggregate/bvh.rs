@@ -466,21 +466,23 @@ impl Bvh {
         }
     }
 
-    /// The nearest hit: `hit(item)` is each item's own nearest hit over the whole `range`
-    /// (`(t, data)`), and the result is the least `(t, item)` over all items — the hit a loop
-    /// over every item would keep, ties going to the lower index — with its item. Items are
-    /// queried over the whole range, not up to the nearest hit so far, so that each item's
-    /// answer does not depend on the visiting order.
+    /// The nearest hit: `hit(item, t_max)` is each item's own nearest hit over the whole
+    /// `range` (`(t, data)`), and the result is the least `(t, item)` over all items — the hit
+    /// a loop over every item would keep, ties going to the lower index — with its item. Items
+    /// are queried over the whole range, not up to the nearest hit so far, so that each item's
+    /// answer does not depend on the visiting order; `t_max` (the nearest hit so far, or the
+    /// range's end) lets `hit` skip an item that certainly has no hit at or before it, as the
+    /// traversal skips nodes.
     pub fn nearest<H>(
         &self,
         ray: &Ray,
         range: Range<f64>,
         visits: &mut u64,
-        mut hit: impl FnMut(u32) -> Option<(f64, H)>,
+        mut hit: impl FnMut(u32, f64) -> Option<(f64, H)>,
     ) -> Option<(u32, f64, H)> {
         let mut best: Option<(u32, f64, H)> = None;
         self.traverse(ray, range, visits, |item, t_max| {
-            if let Some((t, h)) = hit(item)
+            if let Some((t, h)) = hit(item, t_max)
                 && precedes(item, t, &best, t_max)
             {
                 best = Some((item, t, h));
@@ -912,7 +914,7 @@ mod tests {
             Some(t)
         });
         assert_eq!(seen, ids, "ids in traversal order");
-        let hit = bvh.nearest(&ray, 0.0..f64::INFINITY, &mut 0, |i| Some((1.0, i)));
+        let hit = bvh.nearest(&ray, 0.0..f64::INFINITY, &mut 0, |i, _| Some((1.0, i)));
         assert_eq!(hit.map(|h| h.0), Some(1), "the tie goes to the lowest id");
         assert!(
             bvh.any(&ray, 0.0..f64::INFINITY, &mut 0, |i| i == 28),
@@ -960,7 +962,7 @@ mod tests {
         let bvh = Bvh::new(&boxes);
         let ray = Ray::new(DVec3::new(5.0, 0.5, 0.5), DVec3::NEG_X);
         let mut visits = 0;
-        let hit = bvh.nearest(&ray, 0.0..f64::INFINITY, &mut visits, |i| Some((4.0, i)));
+        let hit = bvh.nearest(&ray, 0.0..f64::INFINITY, &mut visits, |i, _| Some((4.0, i)));
         assert_eq!(hit.map(|h| h.0), Some(0), "the tie goes to item 0");
     }
 

@@ -56,18 +56,20 @@ impl Aggregate {
         &self.unbounded
     }
 
-    /// The least `(t, item)` over every item's own nearest hit `hit(item)` in `range` (see
-    /// [`Bvh::nearest`]), with its item; counts BVH nodes visited in `visits`.
+    /// The least `(t, item)` over every item's own nearest hit `hit(item, t_max)` in `range`
+    /// (see [`Bvh::nearest`]: `t_max` is the nearest hit so far), with its item; counts BVH
+    /// nodes visited in `visits`.
     pub fn nearest<H>(
         &self,
         ray: &Ray,
         range: Range<f64>,
         visits: &mut u64,
-        mut hit: impl FnMut(u32) -> Option<(f64, H)>,
+        mut hit: impl FnMut(u32, f64) -> Option<(f64, H)>,
     ) -> Option<(u32, f64, H)> {
         let mut best = self.bvh.nearest(ray, range.clone(), visits, &mut hit);
         for &i in &self.unbounded {
-            if let Some((t, h)) = hit(i)
+            let t_max = best.as_ref().map_or(range.end, |b| b.1);
+            if let Some((t, h)) = hit(i, t_max)
                 && bvh::precedes(i, t, &best, range.end)
             {
                 best = Some((i, t, h));

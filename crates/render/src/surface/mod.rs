@@ -110,6 +110,16 @@ pub trait Surface: Send + Sync + std::fmt::Debug {
         self.intersect(ray, t_range, ws).is_some()
     }
 
+    /// An interval of `t` holding every hit of `ray` on the surface, `None` when the ray
+    /// certainly misses it, found more cheaply than by [`Surface::intersect`]: the nearest-hit
+    /// query skips a surface whose interval starts beyond the nearest hit found so far (as it
+    /// skips a hierarchy node whose box does) or ends before the query's range, so the answer
+    /// stays the one a loop over every surface gives. The whole line (the default) when the
+    /// surface has no cheaper bound than its box, which the hierarchy already tests.
+    fn hit_interval(&self, _ray: &Ray) -> Option<Range<f64>> {
+        Some(f64::NEG_INFINITY..f64::INFINITY)
+    }
+
     /// Normal, surface parameters and error bound at a hit returned by
     /// [`Surface::intersect`] on this surface.
     fn shading(&self, hit: &Hit) -> SurfaceGeometry;
@@ -137,6 +147,9 @@ impl<S: Surface + ?Sized> Surface for Box<S> {
     }
     fn occluded(&self, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> bool {
         (**self).occluded(ray, t_range, ws)
+    }
+    fn hit_interval(&self, ray: &Ray) -> Option<Range<f64>> {
+        (**self).hit_interval(ray)
     }
     fn shading(&self, hit: &Hit) -> SurfaceGeometry {
         (**self).shading(hit)

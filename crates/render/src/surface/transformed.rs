@@ -49,6 +49,12 @@ impl<S: Surface> Surface for Transformed<S> {
         self.inner.occluded(&r, t_range, ws)
     }
 
+    /// The inner surface's interval for the mapped ray (the map keeps `t`).
+    fn hit_interval(&self, ray: &Ray) -> Option<Range<f64>> {
+        self.inner
+            .hit_interval(&self.object_from_world.apply_ray(ray))
+    }
+
     /// An affine image of a convex body is convex, and `G(x) = F(M⁻¹(x − b))` is negative
     /// exactly inside it with `∇G = M⁻ᵀ∇F`: the normal [`Surface::shading`] gives below,
     /// `M⁻ᵀn` normalised, points out of it as `n` did, whatever the sign of `det M`.

@@ -99,12 +99,15 @@ impl Surface for TriangleMesh {
 
     fn intersect(&self, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> Option<Hit> {
         let mut visits = 0;
-        let found = self.bvh.nearest(ray, t_range.clone(), &mut visits, |item| {
-            let hit = self.faces[item as usize]
-                .surface()
-                .intersect(ray, t_range.clone(), ws)?;
-            Some((hit.t, hit))
-        });
+        let found = self
+            .bvh
+            .nearest(ray, t_range.clone(), &mut visits, |item, _| {
+                let hit =
+                    self.faces[item as usize]
+                        .surface()
+                        .intersect(ray, t_range.clone(), ws)?;
+                Some((hit.t, hit))
+            });
         ws.stats.bvh_node_visits += visits;
         // The triangle's own tag is 0 (a polygon uses none): the mesh's names the triangle.
         found.map(|(item, _, hit)| Hit { tag: item, ..hit })
