@@ -94,27 +94,49 @@ fn nearest_hit_leaving(
     // Each primitive is asked over the whole range, so its answer does not depend on the
     // visiting order: the result is the least (t, index), as a loop over all would find.
     let mut visits = 0;
-    let best = scene
-        .aggregate
-        .nearest(ray, t_range.clone(), &mut visits, |i, t_max| {
-            if Some(i) == leaving {
-                return None;
-            }
-            let surface = &scene.surfaces[i as usize];
-            // Certainly missed, or every hit beyond the nearest one so far or before the
-            // range: cannot be the answer (nor tie with it).
-            match surface.hit_interval(ray) {
-                Some(hits) if hits.start <= t_max && hits.end >= t_range.start => {}
-                _ => return None,
-            }
-            let kind = surface.kind().index();
-            ws.stats.per_kind[kind].tests += 1;
-            let h = surface.intersect(ray, t_range.clone(), ws)?;
-            ws.stats.per_kind[kind].hits += 1;
-            Some((h.t, h))
-        });
+    let range = t_range.clone();
+    let best = if scene.aggregate.is_flat() {
+        // A few surfaces, each testing its own box and ball at once: the hit interval would
+        // only repeat that work (the Whitted torus: +9 % time).
+        scene.aggregate.nearest(ray, range, &mut visits, |i, _| {
+            (Some(i) != leaving).then(|| test_surface(scene, i, ray, t_range.clone(), ws))?
+        })
+    } else {
+        // A surface whose hits certainly all lie beyond the nearest hit so far, or before the
+        // range, cannot be the answer (nor tie with it): skipped by its hit interval, as the
+        // hierarchy skips nodes.
+        scene
+            .aggregate
+            .nearest(ray, range, &mut visits, |i, t_max| {
+                if Some(i) == leaving {
+                    return None;
+                }
+                match scene.surfaces[i as usize].hit_interval(ray) {
+                    Some(hits) if hits.start <= t_max && hits.end >= t_range.start => {}
+                    _ => return None,
+                }
+                test_surface(scene, i, ray, t_range.clone(), ws)
+            })
+    };
     ws.stats.bvh_node_visits += visits;
     best.map(|(i, _, h)| (i as usize, h))
+}
+
+/// Primitive `i`'s nearest hit of `ray` in `t_range`, counted in the statistics.
+#[inline(always)]
+fn test_surface(
+    scene: &PreparedScene,
+    i: u32,
+    ray: &Ray,
+    t_range: Range<f64>,
+    ws: &mut Workspace,
+) -> Option<(f64, Hit)> {
+    let surface = &scene.surfaces[i as usize];
+    let kind = surface.kind().index();
+    ws.stats.per_kind[kind].tests += 1;
+    let h = surface.intersect(ray, t_range, ws)?;
+    ws.stats.per_kind[kind].hits += 1;
+    Some((h.t, h))
 }
 
 /// Whether any primitive blocks `ray` within `t_range` (through the scene's BVH); stops at the

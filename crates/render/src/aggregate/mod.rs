@@ -51,6 +51,12 @@ impl Aggregate {
         self.bvh.info()
     }
 
+    /// Whether the bounded items are a flat list (at most [`FLAT_MAX_ITEMS`], no box tested
+    /// before each item's own) rather than a tree.
+    pub fn is_flat(&self) -> bool {
+        self.bvh.info().nodes == 0
+    }
+
     /// Items tested outside the hierarchy.
     pub fn unbounded(&self) -> &[u32] {
         &self.unbounded
