@@ -282,7 +282,7 @@ pub(crate) struct Refusal {
     pub(crate) message: String,
 }
 
-/// Refuses file names (texture files, control-point files) that leave `dir`: absolute paths,
+/// Refuses file names (texture files, control-point files, mesh files) that leave `dir`: absolute paths,
 /// `..` that climbs out, and links pointing outside. `#save` is ignored: the server writes no
 /// files.
 pub(crate) fn confine_files(ast: &SceneAst, dir: &Path) -> Result<(), Refusal> {
@@ -455,6 +455,10 @@ mod tests {
             assert_eq!(err.at, Some((2, 46)), "{name}: at the file name");
             assert!(err.message.contains(name), "{}", err.message);
         }
+        // A mesh's OBJ file too (`Type = MESH`, session 18).
+        let text = "#object Type = MESH File Name = /etc/passwd";
+        let err = confine_files(&ast(text), dir.path()).expect_err("a mesh outside");
+        assert_eq!(err.at, Some((1, 33)), "at the mesh's file name");
     }
 
     #[test]

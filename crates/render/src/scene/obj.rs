@@ -6,7 +6,8 @@
 //! `(v₀, vᵢ, vᵢ₊₁)`, as for NFF's polygons. Texture coordinates (`vt`) are read past, and the
 //! statements that group, name, smooth or colour faces (`o`, `g`, `s`, `usemtl`, `mtllib`) or
 //! draw no surface (`l`, `p`, free-form curves) are skipped: the scene's `#object` gives the
-//! material. Parsing only; the scene build reads the file and reports errors with its name.
+//! material. A line continued with `\\` is not joined (its words read as a malformed line).
+//! Parsing only; the scene build reads the file and reports errors with its name.
 
 use glam::DVec3;
 

@@ -936,9 +936,9 @@ impl<F: ImplicitFn> Surface for Implicit<F> {
     }
 
     /// The ray's chord through the shape's own bounding sphere, widened by the margin by
-    /// which [`Implicit::nearest`] may search before an entry ([`ENTRY_MARGIN_REL`], twice
-    /// over, at both ends); `None` when the ray passes outside it. Shapes without such a
-    /// sphere leave it to their box.
+    /// which the root search may start before an entry ([`ENTRY_MARGIN_REL`], twice over, at
+    /// both ends); `None` when the ray passes outside it. Shapes without such a sphere leave
+    /// it to their box.
     fn hit_interval(&self, ray: &Ray) -> Option<Range<f64>> {
         let Some((c, r)) = self.f.bounding_sphere() else {
             return Some(f64::NEG_INFINITY..f64::INFINITY);

@@ -87,7 +87,7 @@ impl ImplicitFn for Sphere {
         ]);
     }
 
-    /// The sphere itself, widened by [`BALL_MARGIN_REL`]: a ray that misses it is rejected by
+    /// The sphere itself, widened by `BALL_MARGIN_REL` (2⁻²⁰): a ray that misses it is rejected by
     /// a distance test before any polynomial is built (the shells of the SPD, thousands of
     /// overlapping spheres, send 20 rays past a sphere for every 9 that hit it), and the root
     /// search covers the chord inside it.
