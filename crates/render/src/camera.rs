@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use crate::geometry::Ray;
+use crate::geometry::{Ray, unit};
 use crate::scene::{CameraSpec, LookAtCamera, StamCamera};
 
 /// A pinhole camera: the eye and the image rectangle in world space.
@@ -32,8 +32,19 @@ impl Camera {
 
     /// Eye / look-at / up with a vertical field of view; square pixels.
     fn look_at(c: &LookAtCamera, width: u32, height: u32) -> Self {
-        let forward = (c.look_at - c.eye).normalize();
-        let right = forward.cross(c.up).normalize();
+        // Where squaring overflows (a LookAt 1e308 away, a long Up), the unit vectors come
+        // from `unit`, which scales first; the scene's check refused the directions that have
+        // none. Otherwise the plain normalisation, as before (the same rays, bit for bit).
+        let normalised = |v: DVec3| {
+            let u = v.normalize();
+            (u.is_finite() && u.length_squared() > 0.5).then_some(u)
+        };
+        let forward = normalised(c.look_at - c.eye)
+            .or_else(|| unit(c.look_at - c.eye))
+            .unwrap_or(DVec3::Y);
+        let right = normalised(forward.cross(c.up))
+            .or_else(|| unit(forward.cross(unit(c.up)?)))
+            .unwrap_or(DVec3::X);
         let up = right.cross(forward);
         let half_h = (c.view_field_deg.to_radians() / 2.0).tan();
         let half_w = half_h * f64::from(width) / f64::from(height);

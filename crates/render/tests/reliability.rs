@@ -421,3 +421,50 @@ fn files_beyond_the_read_limits_are_refused_naming_the_limit() {
     let e = chain(&render::scene::load(&at).unwrap_err());
     assert!(!e.contains("longer than the limit"), "{e}");
 }
+
+/// Caught by the scene fuzzer (session 18): `LookAt = (0, -1e308, 0)` passed the camera check
+/// (the difference from `Eye` is finite) but its squared length overflowed, the camera's frame
+/// normalised to zero and NaN, and the hierarchy's traversal overflowed its stack on the NaN
+/// rays (a panic). Such a camera now builds its frame by scaling first and renders; a
+/// difference that overflows is a camera error.
+#[test]
+fn a_look_at_point_1e308_away_renders_and_an_overflowing_one_is_refused() {
+    let scene = |look_at: &str, eye: &str| {
+        format!(
+            "#camera Eye = {eye} LookAt = {look_at} Up = (0, 0, 1) ViewField = 45\n\
+             #light Source = (5,-5,10) Color = (1,1,1)\n\
+             #object Type = SPHERE Center = (0,0,0) Radius = 1\n\
+             #object Type = SPHERE Center = (3,0,0) Radius = 1\n\
+             #object Type = SPHERE Center = (0,3,0) Radius = 1\n\
+             #object Type = SPHERE Center = (0,0,3) Radius = 1\n\
+             #object Type = TORUS Center = (3,3,0) Axis = (0,0,1) MajorRadius = 1 MinorRadius = 0.3\n"
+        )
+    };
+    let far = parse(
+        &scene("(0, -1e308, 0)", "(30, -40, 35)"),
+        Path::new("r.scene"),
+    )
+    .expect("a distant LookAt is a valid camera");
+    let prepared = PreparedScene::new(&far).unwrap();
+    let settings = RenderSettings {
+        size: [4, 4],
+        resolution: [1, 1],
+        samples: 1,
+        depth: false,
+    };
+    let out = render(&prepared, &far.camera, &settings, &|_| {});
+    assert!(
+        out.film
+            .pixels
+            .iter()
+            .all(|p| p.iter().all(|c| c.is_finite())),
+        "finite pixels"
+    );
+    let e = parse(
+        &scene("(0, -1e308, 0)", "(0, 1e308, 0)"),
+        Path::new("r.scene"),
+    )
+    .expect_err("LookAt − Eye overflows")
+    .to_string();
+    assert!(e.contains("Eye and LookAt"), "{e}");
+}

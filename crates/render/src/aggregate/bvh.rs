@@ -113,6 +113,12 @@ struct Node {
     /// bits: the order of the binary tree's traversal over the binary nodes this node replaces
     /// ([`Opened::orders`]), then the empty lanes.
     order: [u8; 8],
+    /// The used lanes, one bit each (the first `len` bits): the only lanes a ray may cross.
+    /// An empty lane's box is `(+∞, −∞)`, which the slab test misses — unless the ray's
+    /// numbers are NaN, which the test counts as crossed (so that a NaN end loses no hit),
+    /// and an empty lane taken for a child sent the traversal back to the root until its
+    /// stack overflowed (a fuzzed camera 1e308 away, every ray NaN).
+    used: u8,
 }
 
 const _: () = assert!(size_of::<Node>() == 256, "a node is four cache lines");
@@ -383,7 +389,7 @@ impl Bvh {
                 };
                 mask |= u32::from(hit) << lane;
             }
-            mask
+            mask & u32::from(node.used)
         };
         // A tree of `depth − 1` levels of nodes needs `3·(depth − 1) + 1` entries (see `STACK`).
         let mut short = [0u32; SHORT_STACK];
@@ -726,6 +732,7 @@ fn collapse(binary: &[BinaryNode]) -> (Vec<Node>, usize) {
             child: [0; WIDTH],
             count: [0; WIDTH],
             order: opened.orders(),
+            used: (1u8 << slots.len()) - 1,
         };
         for (lane, &s) in slots.iter().enumerate() {
             let child = &binary[s];
@@ -835,6 +842,29 @@ mod tests {
 
     fn unit_box(x: f64) -> Bounds3 {
         Bounds3::new(DVec3::new(x, 0.0, 0.0), DVec3::new(x + 1.0, 1.0, 1.0))
+    }
+
+    /// A ray whose numbers are NaN crosses every used lane (the slab test keeps NaN ends),
+    /// so the traversal visits every item once — and no empty lane: it used to take one for
+    /// a child, go back to the root and overflow its stack (caught by the scene fuzzer: a
+    /// camera looking at a point 1e308 away made every ray NaN).
+    #[test]
+    fn a_nan_ray_visits_every_item_once_and_no_empty_lane() {
+        // 4-wide nodes over 2–3 children have empty lanes: 7, 9 and 50 items.
+        for n in [7u32, 9, 50] {
+            let boxes: Vec<Bounds3> = (0..n).map(|i| unit_box(f64::from(i) * 1.5)).collect();
+            let bvh = Bvh::new(&boxes);
+            assert!(!bvh.nodes.is_empty(), "{n} items make a tree");
+            for dir in [DVec3::NAN, DVec3::new(f64::NAN, 0.0, 1.0), DVec3::ZERO] {
+                let ray = Ray::new(DVec3::new(0.5, 0.5, -3.0), dir);
+                let mut seen = vec![0u32; n as usize];
+                bvh.traverse(&ray, 0.0..f64::INFINITY, &mut 0, |i, t_max| {
+                    seen[i as usize] += 1;
+                    Some(t_max)
+                });
+                assert!(seen.iter().all(|&k| k <= 1), "{n} items, {dir}: {seen:?}");
+            }
+        }
     }
 
     #[test]
@@ -1369,6 +1399,7 @@ mod tests {
                 child: [0; WIDTH],
                 count: [0; WIDTH],
                 order: [packed([0, 1, 2, 3]); 8],
+                used: 0b1111,
             };
             for lane in 0..WIDTH {
                 node.bounds.set(lane, &cube);

@@ -23,7 +23,7 @@ use std::path::PathBuf;
 use glam::{DAffine3, DMat3, DVec3};
 
 use super::control_net::ControlNet;
-use crate::geometry::{Transform, polygon_normal};
+use crate::geometry::{Transform, polygon_normal, unit};
 use crate::methods::PatchMethod;
 use crate::trivariate::Poly3;
 
@@ -830,11 +830,17 @@ impl Scene {
                 if !(c.eye.is_finite() && c.look_at.is_finite() && c.up.is_finite()) {
                     return Err(cam_err("camera vectors must be finite"));
                 }
-                let view = c.look_at - c.eye;
-                if view.length_squared() == 0.0 {
-                    return Err(cam_err("Eye and LookAt must differ"));
-                }
-                if view.cross(c.up).length_squared() == 0.0 {
+                // As the camera builds its frame: unit vectors scaled before squaring, so a
+                // distant LookAt is fine and a difference that overflows is refused (it made
+                // every camera ray NaN).
+                let Some(forward) = unit(c.look_at - c.eye) else {
+                    return Err(cam_err(if c.look_at == c.eye {
+                        "Eye and LookAt must differ"
+                    } else {
+                        "Eye and LookAt are too far apart: their difference overflows"
+                    }));
+                };
+                if unit(c.up).and_then(|up| unit(forward.cross(up))).is_none() {
                     return Err(cam_err("Up must not be parallel to the view direction"));
                 }
                 if !(c.view_field_deg > 0.0 && c.view_field_deg < 180.0) {
