@@ -1527,7 +1527,7 @@ mod tests {
     }
 
     /// Every hit of a sphere and of a torus lies in the interval `hit_interval` gives, and
-    /// a ray it says misses has no hit: 4 000 random rays, many grazing, from near and far
+    /// a ray it says misses has no hit: 4 000 random rays aimed around them, from near and far
     /// (the nearest-hit query skips surfaces by this interval, so a hit outside it would be
     /// lost).
     #[test]
