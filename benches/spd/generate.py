@@ -24,18 +24,6 @@ import math
 import os
 
 
-def rotate_x(v, a):
-    x, y, z = v
-    c, s = math.cos(a), math.sin(a)
-    return (x, y * c - z * s, y * s + z * c)
-
-
-def rotate_z(v, a):
-    x, y, z = v
-    c, s = math.cos(a), math.sin(a)
-    return (x * c - y * s, x * s + y * c, z)
-
-
 def ring_points(tube_radius):
     """The 30 joints of the six rings: one pentagon in the xy plane, scaled so that the object
     with its tubes fits the unit ball, and five copies tipped over by the dihedral angle of
@@ -43,11 +31,12 @@ def ring_points(tube_radius):
     scale = 1.0 / (1.0 + tube_radius)
     first = [(scale * math.cos(2 * math.pi * k / 5), scale * math.sin(2 * math.pi * k / 5), 0.0)
              for k in range(5)]
-    tip = 2.0 * math.acos(math.cos(math.pi / 3) / math.sin(math.pi / 5))
+    tip = math.degrees(2.0 * math.acos(math.cos(math.pi / 3) / math.sin(math.pi / 5)))
     points = list(first)
     for ring in range(1, 6):
-        turn = math.pi * (2 * (ring - 1) + 1) / 5
-        points += [rotate_z(rotate_x(p, tip), turn) for p in first]
+        turn = 180.0 * (2 * (ring - 1) + 1) / 5
+        m = matrix_product(rotation(0, tip), rotation(2, turn))
+        points += [apply(m, p) for p in first]
     return points
 
 
