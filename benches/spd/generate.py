@@ -3,20 +3,21 @@
 
 Eric Haines' Standard Procedural Databases (1987) are defined by their generators; the shared
 data holds the output of four of them (balls, gears, mount, tetra). This script is our own
-writer of another one, from the generator's geometry as its source describes it (public
-domain): `rings`, pyramids of objects made of six pentagonal rings that join the midpoints of
-a dodecahedron's edges, each ring 5 cylinders and 5 spheres, in front of a white wall, seen from
-the pyramid's apex direction, three lights. Size factor `s` gives s² + (s−1)² + … + 1 objects,
-30 cylinders and 30 spheres each (`s = 7`, the default: 4 200 of each).
+writer of four more, from the geometry their public-domain sources describe (none of their
+code): `lattice` (shiny spheres joined by matte cylinders in a cube), `rings` (pyramids of
+objects made of six pentagonal rings of cylinders and spheres, before a wall), `shells`
+(Pickover's shell of overlapping spheres) and `tree` (Aono and Kunii's tree of cones and
+spheres over a field). Each function's docstring gives its counts at a size factor `s`.
 
-The NFF file follows NFF.TXT (`c` entities are open cones, here cylinders); the POV-Ray twin
-writes the same camera (direction, right and up scaled by the frustum at the NFF field of
-view), lights scaled by 1/√3 (POV-Ray does not normalise three lights; NFF readers do),
-`cone { … open }` for each cylinder, and textures from the material's parameters: diffuse,
-Phong highlight, reflection (the NFF `Ks`).
+The NFF file follows NFF.TXT (`c` entities are open cones); the POV-Ray twin writes the same
+camera (direction, right and up scaled by the frustum at the NFF field of view), the lights
+with the intensity the generators give POV-Ray (usually `1/√n` for `n` lights: POV-Ray does
+not share the light out; NFF readers do), `cone { … open }` for each cone, and textures from
+the material's parameters: the generator's ambient, diffuse, Phong highlight, reflection (the
+NFF `Ks`).
 
     python3 benches/spd/generate.py lattice|rings|shells|tree [-s N] OUT_DIR
-        # writes OUT_DIR/NAME[-sN].nff and .pov
+        # writes OUT_DIR/NAME[-sN].nff and .pov (the generator's default size: NAME)
 """
 
 import argparse
