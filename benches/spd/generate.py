@@ -116,6 +116,11 @@ class Writer:
 
 
 def rings(w, size):
+    """Pyramids of objects of six pentagonal rings joining the midpoints of a dodecahedron's
+    edges (each ring five cylinders and five spheres at the joints), layer `k` holding `k²`
+    objects, before a white wall, seen along the pyramid's axis; three lights.
+    `s² + (s − 1)² + … + 1` objects of 30 cylinders and 30 spheres (`s = 7`, the default:
+    4 200 of each)."""
     radius = 0.07412  # the tubes' and joints' radius
     spread = 1.0 / math.sin(math.pi / 8)  # layers apart along y; the pyramid's x, z pitch is 1
     w.background((0.078, 0.361, 0.753))
