@@ -3,11 +3,12 @@
 
 Eric Haines' Standard Procedural Databases (1987) are defined by their generators; the shared
 data holds the output of four of them (balls, gears, mount, tetra). This script is our own
-writer of four more, from the geometry their public-domain sources describe (none of their
+writer of five more, from the geometry their public-domain sources describe (none of their
 code): `lattice` (shiny spheres joined by matte cylinders in a cube), `rings` (pyramids of
 objects made of six pentagonal rings of cylinders and spheres, before a wall), `shells`
-(Pickover's shell of overlapping spheres) and `tree` (Aono and Kunii's tree of cones and
-spheres over a field). Each function's docstring gives its counts at a size factor `s`.
+(Pickover's shell of overlapping spheres), `teapot` (Newell's teapot tessellated into
+triangles with vertex normals, on a checkerboard) and `tree` (Aono and Kunii's tree of cones
+and spheres over a field). Each function's docstring gives its counts at a size factor `s`.
 
 The NFF file follows NFF.TXT (`c` entities are open cones); the POV-Ray twin writes the same
 camera (direction, right and up scaled by the frustum at the NFF field of view), the lights
@@ -16,7 +17,7 @@ not share the light out; NFF readers do), `cone { … open }` for each cone, and
 the material's parameters: the generator's ambient, diffuse, Phong highlight, reflection (the
 NFF `Ks`).
 
-    python3 benches/spd/generate.py lattice|rings|shells|tree [-s N] OUT_DIR
+    python3 benches/spd/generate.py lattice|rings|shells|teapot|tree [-s N] OUT_DIR
         # writes OUT_DIR/NAME[-sN].nff and .pov (the generator's default size: NAME)
 """
 
@@ -103,6 +104,14 @@ class Writer:
         body = ",\n".join("        <%g, %g, %g>" % v for v in vertices)
         self.pov.write("polygon {\n    %d,\n%s\n    texture { %s }\n}\n\n"
                        % (len(vertices), body, self.texture))
+
+    def smooth_triangle(self, vertices, normals):
+        """NFF's `pp` (a polygon with a normal at each vertex), POV-Ray's `smooth_triangle`."""
+        self.nff.write("pp 3\n" + "".join("%g %g %g %g %g %g\n" % (*v, *n)
+                                          for v, n in zip(vertices, normals)))
+        body = ",\n".join("    <%g, %g, %g>, <%g, %g, %g>" % (*v, *n)
+                           for v, n in zip(vertices, normals))
+        self.pov.write("smooth_triangle {\n%s\n    texture { %s }\n}\n\n" % (body, self.texture))
 
     def cone(self, base, base_r, apex, apex_r):
         """An open cone (a cylinder when the radii are equal), NFF's `c`."""
@@ -251,8 +260,84 @@ def lattice(w, size):
                     w.cone(tuple(base), small, tuple(apex), small)
 
 
+def bezier_patches(path):
+    """The bicubic patches of a `.bpt` file (count, then per patch `3 3` and 16 points, row by
+    row): lists of 4 rows of 4 points."""
+    words = open(path).read().split()
+    count, at, patches = int(words[0]), 1, []
+    for _ in range(count):
+        assert words[at:at + 2] == ["3", "3"], "bicubic patches only"
+        at += 2
+        points = [tuple(float(x) for x in words[at + 3 * k:at + 3 * k + 3]) for k in range(16)]
+        at += 48
+        patches.append([points[4 * r:4 * r + 4] for r in range(4)])
+    return patches
+
+
+def bernstein3(x):
+    """The cubic Bernstein polynomials at `x` and their derivatives."""
+    y = 1.0 - x
+    return ([y * y * y, 3 * x * y * y, 3 * x * x * y, x * x * x],
+            [-3 * y * y, 3 * y * y - 6 * x * y, 6 * x * y - 3 * x * x, 3 * x * x])
+
+
+def teapot(w, size):
+    """Newell's teapot (with Crow's bottom, `scenes/teapot.bpt`), each of its 32 patches cut
+    into `s × s` cells of two triangles with the patch normals at their corners (`pp`), on a
+    checkerboard of `s × s` squares; two lights. `64·s² − 8·s` triangles once those degenerate
+    at the lid's and the bottom's centre are dropped (`s = 6`, the default: 2 256), `s²`
+    squares."""
+    w.background((0.078, 0.361, 0.753))
+    w.view((4.86, 7.2, 5.4), (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), 45.0, 1.0, 512)
+    for p in [(-3.1, 9.8, 12.1), (11.3, 5.1, 8.8)]:
+        w.light(p, 1.0 / math.sqrt(2))
+    # The checkerboard: the squares with an odd index sum white, then the others grey.
+    for colour, parity in [((1.0, 1.0, 1.0), 1), ((0.5, 0.5, 0.5), 0)]:
+        w.material(colour, 0.5, 0.5, 0.5, 30.0)
+        for i in range(size):
+            for j in range(size):
+                if (i + j) % 2 != parity:
+                    continue
+                x0, x1 = (4.0 * (2.0 * (i + k) / size - 1.0) for k in (0, 1))
+                y0, y1 = (4.0 * (2.0 * (j + k) / size - 1.0) for k in (0, 1))
+                w.polygon([(x0, y0, 0.0), (x1, y0, 0.0), (x1, y1, 0.0), (x0, y1, 0.0)])
+    w.material((1.0, 0.5, 0.1), 0.75, 0.25, 0.25, 37.0)
+    here = os.path.dirname(os.path.abspath(__file__))
+    for g in bezier_patches(os.path.join(here, "..", "..", "scenes", "teapot.bpt")):
+
+        def point(s, t):
+            (bs, ds), (bt, dt) = bernstein3(s), bernstein3(t)
+            p = [sum(bs[r] * bt[c] * g[r][c][k] for r in range(4) for c in range(4))
+                 for k in range(3)]
+            ps = [sum(ds[r] * bt[c] * g[r][c][k] for r in range(4) for c in range(4))
+                  for k in range(3)]
+            pt = [sum(bs[r] * dt[c] * g[r][c][k] for r in range(4) for c in range(4))
+                  for k in range(3)]
+            n = (pt[1] * ps[2] - pt[2] * ps[1], pt[2] * ps[0] - pt[0] * ps[2],
+                 pt[0] * ps[1] - pt[1] * ps[0])
+            length = math.sqrt(sum(c * c for c in n))
+            return tuple(p), tuple(c / length for c in n) if length > 0 else (0.0, 0.0, 0.0)
+
+        for i in range(size):
+            for j in range(size):
+                # Corners 0..3 of the cell: (i, j), (i, j+1), (i+1, j+1), (i+1, j).
+                corners = [point((i + (k // 2)) / size, (j + (1 if k % 3 else 0)) / size)
+                           for k in range(4)]
+                for tri in ([0, 1, 2], [2, 3, 0]):
+                    v = [corners[k][0] for k in tri]
+                    n = [corners[k][1] for k in tri]
+                    # A corner on the axis is a cusp (the lid's knob, the bottom's centre):
+                    # two there make the triangle degenerate; one takes the axis's normal.
+                    on_axis = [k for k in range(3) if abs(v[k][0]) < 1e-4 and abs(v[k][1]) < 1e-4]
+                    if len(on_axis) > 1:
+                        continue
+                    for k in on_axis:
+                        n[k] = (0.0, 0.0, 1.0 if v[k][2] > 1.5 else -1.0)
+                    w.smooth_triangle(v, n)
+
+
 GENERATORS = {"lattice": (lattice, 12), "rings": (rings, 7), "shells": (shells, 5),
-              "tree": (tree, 11)}
+              "teapot": (teapot, 6), "tree": (tree, 11)}
 
 
 def main():
