@@ -97,7 +97,7 @@ fn nearest_hit_leaving(
     let range = t_range.clone();
     let best = if scene.aggregate.is_flat() {
         // A few surfaces, each testing its own box and ball at once: the hit interval would
-        // only repeat that work (the Whitted torus: +9 % time).
+        // only repeat that work (`paper-notes/bvh.md`, eighteenth session).
         scene.aggregate.nearest(ray, range, &mut visits, |i, _| {
             (Some(i) != leaving).then(|| test_surface(scene, i, ray, t_range.clone(), ws))?
         })

@@ -87,10 +87,10 @@ impl ImplicitFn for Sphere {
         ]);
     }
 
-    /// The sphere itself, widened by `BALL_MARGIN_REL` (2⁻²⁰): a ray that misses it is rejected by
-    /// a distance test before any polynomial is built (the shells of the SPD, thousands of
-    /// overlapping spheres, send 20 rays past a sphere for every 9 that hit it), and the root
-    /// search covers the chord inside it.
+    /// The sphere itself, widened by `BALL_MARGIN_REL` (2⁻²⁰): a ray that misses it is rejected
+    /// by a distance test before any polynomial is built (among many overlapping spheres most
+    /// rays that reach a sphere's box miss it: `paper-notes/bvh.md`, eighteenth session), and
+    /// the root search covers the chord inside it.
     fn bounding_sphere(&self) -> Option<(DVec3, f64)> {
         Some((self.center, self.radius * (1.0 + BALL_MARGIN_REL)))
     }
