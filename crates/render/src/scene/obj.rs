@@ -26,14 +26,13 @@ pub struct ObjError {
     pub message: String,
 }
 
-/// The words of one line after its comment, each with its 1-based column.
+/// The words of one line after its comment, each with its byte offset in the line (turned
+/// into a column only for an error: counting characters per word would cost every line).
 fn words(line: &str) -> impl Iterator<Item = (usize, &str)> {
     let code = line.split('#').next().unwrap_or("");
-    code.split_ascii_whitespace().map(move |w| {
-        // `w` is a sub-slice of `line`: its byte offset, then the characters before it.
-        let offset = w.as_ptr() as usize - line.as_ptr() as usize;
-        (line[..offset].chars().count() + 1, w)
-    })
+    // `w` is a sub-slice of `line`: its offset is the distance between their starts.
+    code.split_ascii_whitespace()
+        .map(move |w| (w.as_ptr() as usize - line.as_ptr() as usize, w))
 }
 
 /// Parses an OBJ file into positions, normals and triangles.
@@ -56,9 +55,10 @@ pub fn parse_obj(text: &str) -> Result<MeshData, ObjError> {
     for (i, line) in text_lines(text).enumerate() {
         let number = i + 1;
         last_line = number;
-        let err = |column: usize, message: String| ObjError {
+        // `at`: the byte offset of the offending word (0: the line as a whole).
+        let err = |at: usize, message: String| ObjError {
             line: number,
-            column,
+            column: line[..at].chars().count() + 1,
             message,
         };
         let mut it = words(line);
@@ -68,12 +68,12 @@ pub fn parse_obj(text: &str) -> Result<MeshData, ObjError> {
         match keyword {
             "v" => {
                 let [x, y, z] = numbers(&mut it, "a position `v x y z`", &err)?;
-                if let Some((column, w)) = it.next() {
+                if let Some((at, w)) = it.next() {
                     match w.parse::<f64>() {
                         Ok(1.0) => {}
                         _ => {
                             return Err(err(
-                                column,
+                                at,
                                 format!("a weight `{w}`: only 1 (or none) is accepted"),
                             ));
                         }
@@ -83,8 +83,8 @@ pub fn parse_obj(text: &str) -> Result<MeshData, ObjError> {
             }
             "vn" => {
                 let [x, y, z] = numbers(&mut it, "a normal `vn x y z`", &err)?;
-                if let Some((column, w)) = it.next() {
-                    return Err(err(column, format!("`{w}`: a normal has three numbers")));
+                if let Some((at, w)) = it.next() {
+                    return Err(err(at, format!("`{w}`: a normal has three numbers")));
                 }
                 mesh.normals.push(DVec3::new(x, y, z));
             }
@@ -110,14 +110,14 @@ fn numbers<'a, const K: usize>(
 ) -> Result<[f64; K], ObjError> {
     let mut out = [0.0; K];
     for (k, slot) in out.iter_mut().enumerate() {
-        let (column, w) = it
+        let (at, w) = it
             .next()
-            .ok_or_else(|| err(1, format!("expected {what}, found {k} numbers")))?;
+            .ok_or_else(|| err(0, format!("expected {what}, found {k} numbers")))?;
         *slot = w
             .parse::<f64>()
             .ok()
             .filter(|x| x.is_finite())
-            .ok_or_else(|| err(column, format!("`{w}` is not a finite number ({what})")))?;
+            .ok_or_else(|| err(at, format!("`{w}` is not a finite number ({what})")))?;
     }
     Ok(out)
 }
@@ -149,26 +149,24 @@ fn face<'a>(
 ) -> Result<(), ObjError> {
     let mut corners: Vec<(u32, Option<u32>)> = Vec::new();
     let mut with_normals = None;
-    for (column, word) in it {
+    for (at, word) in it {
         // `v`, `v/vt`, `v/vt/vn` or `v//vn`; the texture part is skipped.
         let parts: Vec<&str> = word.splitn(4, '/').collect();
         if parts.len() > 3 {
             return Err(err(
-                column,
+                at,
                 format!("`{word}`: a reference has at most three parts"),
             ));
         }
         let position =
-            reference(parts[0], mesh.positions.len(), "vertex").map_err(|m| err(column, m))?;
+            reference(parts[0], mesh.positions.len(), "vertex").map_err(|m| err(at, m))?;
         let normal = match parts.get(2) {
-            Some(n) => {
-                Some(reference(n, mesh.normals.len(), "normal").map_err(|m| err(column, m))?)
-            }
+            Some(n) => Some(reference(n, mesh.normals.len(), "normal").map_err(|m| err(at, m))?),
             None => None,
         };
         if *with_normals.get_or_insert(normal.is_some()) != normal.is_some() {
             return Err(err(
-                column,
+                at,
                 format!("`{word}`: a face's references must all have a normal or none"),
             ));
         }
@@ -176,7 +174,7 @@ fn face<'a>(
     }
     if corners.len() < 3 {
         return Err(err(
-            1,
+            0,
             format!("a face needs three vertices, found {}", corners.len()),
         ));
     }
