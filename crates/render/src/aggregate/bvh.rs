@@ -295,6 +295,12 @@ impl Bvh {
         }
     }
 
+    /// Whether the items are a flat list (at most [`FLAT_MAX_ITEMS`], no node) rather than a
+    /// tree.
+    pub fn is_flat(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
     /// Nodes, depth and build time.
     pub fn info(&self) -> BvhInfo {
         self.info
@@ -342,7 +348,7 @@ impl Bvh {
         visits: &mut u64,
         mut visit: impl FnMut(u32, f64) -> Option<f64>,
     ) {
-        if self.nodes.is_empty() {
+        if self.is_flat() {
             // A flat list (or nothing).
             let mut t_max = range.end;
             for &item in &self.order {

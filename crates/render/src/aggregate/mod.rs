@@ -54,7 +54,7 @@ impl Aggregate {
     /// Whether the bounded items are a flat list (at most [`FLAT_MAX_ITEMS`], no box tested
     /// before each item's own) rather than a tree.
     pub fn is_flat(&self) -> bool {
-        self.bvh.info().nodes == 0
+        self.bvh.is_flat()
     }
 
     /// Items tested outside the hierarchy.
