@@ -305,7 +305,7 @@ fn aggregate_on_flat_boxes_equals_brute_force() {
         }
     }
     boxes.push(None); // an unbounded item: never hit here
-    let agg = Aggregate::new(&boxes);
+    let agg = Aggregate::new(boxes.iter().copied());
     let entry = |i: u32, ray: &Ray| -> Option<(f64, ())> {
         let b = boxes[i as usize]?;
         b.intersect_ray(ray, 0.0..f64::INFINITY)

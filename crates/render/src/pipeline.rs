@@ -111,8 +111,6 @@ pub fn render_scene_with_cancel(
     let inputs: Vec<&Path> = scene_path.into_iter().collect();
     let mut outputs = PendingOutputs::prepare(&targets, &inputs)?;
     let setup_start = Instant::now();
-    let (prepared, settings) = prepare_render(scene, opts)?;
-    let size = settings.size;
     let mut builder = rayon::ThreadPoolBuilder::new();
     if let Some(t) = opts.threads {
         builder = builder.num_threads(t);
@@ -122,6 +120,10 @@ pub fn render_scene_with_cancel(
         threads: requested,
         source,
     })?;
+    // The set-up's parallel parts (surfaces, BVH) run on the render's threads too: on rayon's
+    // global pool they ignored `--threads` and started a second pool.
+    let (prepared, settings) = pool.install(|| prepare_render(scene, opts))?;
+    let size = settings.size;
     let setup = setup_start.elapsed();
 
     let trace_start = Instant::now();

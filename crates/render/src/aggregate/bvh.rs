@@ -15,9 +15,11 @@
 //! list. See `paper-notes/bvh.md`.
 
 use std::ops::Range;
+use std::sync::atomic::{AtomicU32, Ordering};
 use std::time::{Duration, Instant};
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use crate::geometry::{Bounds3, Bounds4, Ray, SlabRay};
 
@@ -216,18 +218,29 @@ fn half_area(b: &Bounds3) -> f64 {
     d.x * d.y + d.y * d.z + d.z * d.x
 }
 
-/// The build's items: item `i` with box `boxes[i]`, taken as the box between its two corners,
-/// as the slab test reads a box; so every node box has `min ≤ max`, which
+/// The build's items: `(id, box)` pairs, each box taken as the box between its two corners, as
+/// the slab test reads a box; so every node box has `min ≤ max`, which
 /// [`Bounds3::slab_by_sign`] and [`Bounds4::slab_by_sign`] need.
-fn items_of(boxes: &[Bounds3]) -> Vec<Item> {
-    boxes
-        .iter()
-        .enumerate()
-        .map(|(i, b)| Item {
-            index: i as u32,
+///
+/// # Panics
+/// If the ids are not strictly increasing (see [`Bvh::with_ids`]).
+fn items_of(items: impl IntoIterator<Item = (u32, Bounds3)>) -> Vec<Item> {
+    let items = items.into_iter();
+    // Reserved for the most items there may be (the aggregate's filter keeps all but the
+    // unbounded ones), not grown by doubling: pages reserved and never written cost nothing.
+    let (least, most) = items.size_hint();
+    let mut out: Vec<Item> = Vec::with_capacity(most.unwrap_or(least));
+    for (index, b) in items {
+        assert!(
+            out.last().is_none_or(|last| last.index < index),
+            "ids strictly increasing"
+        );
+        out.push(Item {
+            index,
             bounds: Bounds3::new(b.min.min(b.max), b.min.max(b.max)),
-        })
-        .collect()
+        });
+    }
+    out
 }
 
 /// The binary tree over `items` (reordered into leaf order), its root at index 0. Needs at
@@ -235,27 +248,43 @@ fn items_of(boxes: &[Bounds3]) -> Vec<Item> {
 fn build_binary(items: &mut [Item]) -> Vec<BinaryNode> {
     // A binary tree with leaves of at least one item has at most 2n − 1 nodes: each subtree
     // is written in place into its share of them; slots left unused are never reached.
-    let mut nodes = vec![UNUSED; 2 * items.len() - 1];
+    // Filled in parallel, as the build writes it (first touches of fresh pages, see `collapse`).
+    let mut nodes = Vec::with_capacity(2 * items.len() - 1);
+    nodes.par_extend(rayon::iter::repeat_n(UNUSED, 2 * items.len() - 1));
     build(items, 0, 1, &mut nodes, 0);
     nodes
 }
 
 impl Bvh {
-    /// Builds the hierarchy over `boxes`. Boxes must be finite (the caller keeps unbounded
-    /// items out); a flat box (zero extent on an axis) is fine.
+    /// Builds the hierarchy over items `0..boxes.len()`, item `i` in box `boxes[i]`. Boxes must
+    /// be finite (the caller keeps unbounded items out); a flat box (zero extent on an axis) is
+    /// fine.
     ///
     /// # Panics
     /// If the 4-wide tree would have 2³⁰ nodes or more (a traversal stack entry names a node
     /// and a child in 32 bits): over a billion items.
     pub fn new(boxes: &[Bounds3]) -> Self {
+        Self::with_ids((0..).zip(boxes.iter().copied()))
+    }
+
+    /// Builds the hierarchy over the items `(id, box)`: every answer (`visit`, `hit`, `blocked`
+    /// and the returned item) names an item by its id. The aggregate names its bounded items by
+    /// their scene index this way, instead of mapping each item the traversal reaches through a
+    /// second table (a random access per item test). Boxes as in [`Bvh::new`].
+    ///
+    /// # Panics
+    /// If the ids are not strictly increasing (ties in [`Bvh::nearest`] go to the lower item,
+    /// which must be the lower id), or as [`Bvh::new`].
+    pub fn with_ids(items: impl IntoIterator<Item = (u32, Bounds3)>) -> Self {
         let start = Instant::now();
-        let mut items = items_of(boxes);
+        let mut items = items_of(items);
         let mut bvh = Bvh::default();
         if items.is_empty() {
             return bvh;
         }
+        let count = items.len();
         let depth = if items.len() <= FLAT_MAX_ITEMS {
-            // The flat list: no node, items in index order (see `traverse`).
+            // The flat list: no node, items in id order (see `traverse`).
             bvh.order = items.iter().map(|it| it.index).collect();
             1
         } else {
@@ -268,31 +297,12 @@ impl Bvh {
             depth
         };
         bvh.info = BvhInfo {
-            items: boxes.len(),
+            items: count,
             nodes: bvh.nodes.len(),
             depth,
             build: start.elapsed(),
         };
         bvh
-    }
-
-    /// Renames the items: item `k` becomes `ids[k]` in every answer (`visit`, `hit`, `blocked`
-    /// and the returned item). The aggregate names its bounded items by their scene index this
-    /// way, instead of mapping each item the traversal reaches through a second table (a
-    /// random access per item test).
-    ///
-    /// # Panics
-    /// If `ids` does not have one entry per item or is not strictly increasing: ties in
-    /// [`Bvh::nearest`] go to the lower item, which must stay the lower id.
-    pub fn relabel(&mut self, ids: &[u32]) {
-        assert_eq!(ids.len(), self.info.items, "one id per item");
-        assert!(
-            ids.windows(2).all(|w| w[0] < w[1]),
-            "ids strictly increasing"
-        );
-        for item in &mut self.order {
-            *item = ids[*item as usize];
-        }
     }
 
     /// Whether the items are a flat list (at most [`FLAT_MAX_ITEMS`], no node) rather than a
@@ -622,6 +632,8 @@ fn build(items: &mut [Item], first: usize, depth: usize, out: &mut [BinaryNode],
 struct Opened {
     /// The children's binary nodes; `slots[..len]` are used.
     slots: [usize; WIDTH],
+    /// The slots of each child's binary subtree (`2m − 1` for `m` items, see [`build`]).
+    spans: [usize; WIDTH],
     len: usize,
     /// `(axis, side)` of each step from the opened node to child `i`, `steps[i]` of them.
     path: [[(u8, u8); WIDTH - 1]; WIDTH],
@@ -671,9 +683,10 @@ impl Opened {
 /// [`WIDTH`] or no inner one is left (Wald et al. 2008, §3.1; Embree's collapse of a binary
 /// tree into a wide one). Opening the largest boxes first removes the binary levels a ray is
 /// most likely to pass through. The first of equal areas is opened.
-fn open(binary: &[BinaryNode], b: usize) -> Opened {
+fn open(binary: &[BinaryNode], b: usize, span: usize) -> Opened {
     let mut opened = Opened {
         slots: [b; WIDTH],
+        spans: [span; WIDTH],
         len: 1,
         path: [[(0, 0); WIDTH - 1]; WIDTH],
         steps: [0; WIDTH],
@@ -700,8 +713,13 @@ fn open(binary: &[BinaryNode], b: usize) -> Opened {
         };
         let (s, new) = (opened.slots[i], opened.len);
         let axis = binary[s].axis;
+        let second = binary[s].offset as usize;
+        // The first child's subtree fills the slots between the node and the second child.
+        let first_span = second - s - 1;
+        opened.spans[new] = opened.spans[i] - 1 - first_span;
+        opened.spans[i] = first_span;
         opened.slots[i] = s + 1;
-        opened.slots[new] = binary[s].offset as usize;
+        opened.slots[new] = second;
         opened.path[new] = opened.path[i];
         opened.steps[new] = opened.steps[i] + 1;
         opened.path[i][opened.steps[i]] = (axis, 0);
@@ -715,54 +733,112 @@ fn open(binary: &[BinaryNode], b: usize) -> Opened {
 }
 
 /// The 4-wide tree standing for the binary tree `binary` (root at 0), root first, each node
-/// before its subtrees (depth-first), and its depth ([`BvhInfo::depth`]). Counted first, so the
-/// node array is allocated once at its size: reserving for the most nodes there can be (one
-/// per inner binary node) and shrinking at the end raised the peak memory of the largest
-/// sphereflake (`paper-notes/bvh.md`, seventh pass).
+/// before its subtrees (depth-first, a node's inner children's subtrees in lane order), and its
+/// depth ([`BvhInfo::depth`]). Two passes over the binary tree: the first counts the 4-wide
+/// nodes of every subtree, so that the node array is allocated once at its size (reserving for
+/// the most nodes there can be and shrinking at the end raised the peak memory of the largest
+/// sphereflake: `paper-notes/bvh.md`, seventh pass) and so that the second can write the
+/// subtrees of a large node in parallel, each into its own share of the array, as [`build`]
+/// writes the binary tree. Serial, this was a third of the 66 430-sphere hierarchy's build.
 fn collapse(binary: &[BinaryNode]) -> (Vec<Node>, usize) {
-    fn count(binary: &[BinaryNode], b: usize) -> usize {
-        let opened = open(binary, b);
-        1 + opened.slots[..opened.len]
-            .iter()
-            .filter(|&&s| binary[s].count == 0)
-            .map(|&s| count(binary, s))
-            .sum::<usize>()
-    }
-    /// Writes the node standing for `b` and its subtrees; its index and depth.
-    fn write(binary: &[BinaryNode], b: usize, out: &mut Vec<Node>) -> (u32, usize) {
-        let opened = open(binary, b);
-        let index = out.len();
-        let slots = &opened.slots[..opened.len];
-        let mut node = Node {
-            bounds: Bounds4::EMPTY,
-            child: [0; WIDTH],
-            count: [0; WIDTH],
-            order: opened.orders(),
-            used: (1u8 << slots.len()) - 1,
-        };
-        for (lane, &s) in slots.iter().enumerate() {
-            let child = &binary[s];
-            node.bounds.set(lane, &child.bounds);
-            // A leaf's items; an inner child's index is known once it is written, below.
+    let sizes: Vec<AtomicU32> = (0..binary.len()).map(|_| AtomicU32::new(0)).collect();
+    let n = count_nodes(binary, 0, binary.len(), &sizes) as usize;
+    assert!(n < 1 << 30, "a 4-wide tree of {n} nodes: fewer than 2^30");
+    // Filled in parallel: the first touch of fresh pages is most of the cost of a large array.
+    let mut nodes = Vec::with_capacity(n);
+    nodes.par_extend(rayon::iter::repeat_n(EMPTY_NODE, n));
+    let depth = write_nodes(binary, 0, binary.len(), 0, &mut nodes, &sizes);
+    (nodes, depth)
+}
+
+/// A node before it is written.
+const EMPTY_NODE: Node = Node {
+    bounds: Bounds4::EMPTY,
+    child: [0; WIDTH],
+    count: [0; WIDTH],
+    order: [0; 8],
+    used: 0,
+};
+
+/// Whether a binary subtree of `span` slots is large enough for its children to be collapsed
+/// in parallel (as [`build`] builds its halves: [`PARALLEL_MIN_ITEMS`]).
+fn collapse_in_parallel(span: usize) -> bool {
+    span > 2 * PARALLEL_MIN_ITEMS
+}
+
+/// The 4-wide nodes standing for the binary subtree of `b` (an inner node or the root, its
+/// subtree `span` slots), also stored in `sizes[b]` (and those of the subtrees below).
+fn count_nodes(binary: &[BinaryNode], b: usize, span: usize, sizes: &[AtomicU32]) -> u32 {
+    let opened = open(binary, b, span);
+    let inner = (0..opened.len).filter(|&lane| binary[opened.slots[lane]].count == 0);
+    let below: u32 = if collapse_in_parallel(span) {
+        inner
+            .collect::<Vec<_>>()
+            .into_par_iter()
+            .map(|lane| count_nodes(binary, opened.slots[lane], opened.spans[lane], sizes))
+            .sum()
+    } else {
+        inner
+            .map(|lane| count_nodes(binary, opened.slots[lane], opened.spans[lane], sizes))
+            .sum()
+    };
+    sizes[b].store(1 + below, Ordering::Relaxed);
+    1 + below
+}
+
+/// Writes the 4-wide node standing for binary node `b` (its subtree `span` slots) at `out[0]`,
+/// which is node `base` of the whole array, and its subtrees after it; `out` holds exactly
+/// them (`sizes[b]` nodes). Returns the subtree's depth.
+fn write_nodes(
+    binary: &[BinaryNode],
+    b: usize,
+    span: usize,
+    base: usize,
+    out: &mut [Node],
+    sizes: &[AtomicU32],
+) -> usize {
+    let opened = open(binary, b, span);
+    let slots = &opened.slots[..opened.len];
+    let (node, rest) = out.split_first_mut().expect("a node's share holds it");
+    *node = Node {
+        bounds: Bounds4::EMPTY,
+        child: [0; WIDTH],
+        count: [0; WIDTH],
+        order: opened.orders(),
+        used: (1u8 << slots.len()) - 1,
+    };
+    // Each inner child's share of `rest`, in lane order.
+    let mut tasks = Vec::with_capacity(WIDTH);
+    let mut rest = rest;
+    let mut next = base + 1;
+    for (lane, &s) in slots.iter().enumerate() {
+        let child = &binary[s];
+        node.bounds.set(lane, &child.bounds);
+        if child.count == 0 {
+            let size = sizes[s].load(Ordering::Relaxed) as usize;
+            let (share, after) = rest.split_at_mut(size);
+            rest = after;
+            node.child[lane] = next as u32;
+            tasks.push((s, opened.spans[lane], next, share));
+            next += size;
+        } else {
+            // A leaf's items.
             node.child[lane] = child.offset;
             node.count[lane] = child.count;
         }
-        out.push(node);
-        let mut depth = 2;
-        for (lane, &s) in slots.iter().enumerate() {
-            if binary[s].count == 0 {
-                let (at, d) = write(binary, s, out);
-                out[index].child[lane] = at;
-                depth = depth.max(1 + d);
-            }
-        }
-        (index as u32, depth)
     }
-    let n = count(binary, 0);
-    assert!(n < 1 << 30, "a 4-wide tree of {n} nodes: fewer than 2^30");
-    let mut nodes = Vec::with_capacity(n);
-    let (_, depth) = write(binary, 0, &mut nodes);
-    (nodes, depth)
+    let below = if collapse_in_parallel(span) {
+        tasks
+            .into_par_iter()
+            .map(|(s, span, at, share)| write_nodes(binary, s, span, at, share, sizes))
+            .max()
+    } else {
+        tasks
+            .into_iter()
+            .map(|(s, span, at, share)| write_nodes(binary, s, span, at, share, sizes))
+            .max()
+    };
+    below.map_or(2, |d| 2.max(1 + d))
 }
 
 /// The cheapest binned SAH split of `items` along `axis` (centres spanning `lo .. lo + ext`):
@@ -941,8 +1017,7 @@ mod tests {
         // the nearest (every item "hit" at 1) is the lowest id, the blocker any id.
         let boxes: Vec<Bounds3> = (0..10).map(|i| unit_box(2.0 * i as f64)).collect();
         let ids: Vec<u32> = (0..10).map(|k| 3 * k + 1).collect();
-        let mut bvh = Bvh::new(&boxes);
-        bvh.relabel(&ids);
+        let bvh = Bvh::with_ids(ids.iter().copied().zip(boxes.iter().copied()));
         let ray = Ray::new(DVec3::new(-1.0, 0.5, 0.5), DVec3::X);
         let mut seen = Vec::new();
         bvh.traverse(&ray, 0.0..f64::INFINITY, &mut 0, |i, t| {
@@ -960,9 +1035,9 @@ mod tests {
 
     #[test]
     #[should_panic(expected = "ids strictly increasing")]
-    fn relabel_refuses_ids_out_of_order() {
+    fn ids_out_of_order_are_refused() {
         let boxes: Vec<Bounds3> = (0..6).map(|i| unit_box(2.0 * i as f64)).collect();
-        Bvh::new(&boxes).relabel(&[0, 1, 2, 4, 3, 5]);
+        Bvh::with_ids([0, 1, 2, 4, 3, 5].into_iter().zip(boxes));
     }
 
     #[test]
@@ -1005,7 +1080,7 @@ mod tests {
     /// The binary tree the SAH build writes over `boxes` and its item order, as [`Bvh::new`]
     /// builds it before the collapse.
     fn binary_tree(boxes: &[Bounds3]) -> (Vec<BinaryNode>, Vec<u32>) {
-        let mut items = items_of(boxes);
+        let mut items = items_of((0..).zip(boxes.iter().copied()));
         let binary = build_binary(&mut items);
         (binary, items.iter().map(|it| it.index).collect())
     }
@@ -1061,13 +1136,18 @@ mod tests {
         // and the retest of stale stack entries is exercised. The calls to `visit` — items,
         // order and the `t_max` each saw — must be those of the binary tree's pop-then-test
         // traversal, on trees whose nodes have 2, 3 and 4 children, leaves mixed with inner
-        // children among them.
+        // children among them; the last tree is large enough to be collapsed in parallel.
         use rand::{Rng, SeedableRng};
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12);
         let mut widths = [0usize; WIDTH + 1];
         let mut mixed = 0;
-        for round in 0..20 {
-            let n = 5 + round * 13;
+        for round in 0..21 {
+            let n = if round == 20 {
+                PARALLEL_MIN_ITEMS + 1000
+            } else {
+                5 + round * 13
+            };
+            assert_eq!(collapse_in_parallel(2 * n - 1), round == 20);
             let boxes: Vec<Bounds3> = (0..n)
                 .map(|_| {
                     let lo = DVec3::new(
@@ -1330,8 +1410,9 @@ mod tests {
     fn the_collapse_opens_the_child_of_largest_area_and_keeps_the_binary_order() {
         // B small (half area 7 < A1's 80): A is opened, then A1; B stays a child.
         let small = hand_tree(cube([10.0, 0.0, 0.0], [11.0, 3.0, 1.0]));
-        let opened = open(&small, 0);
+        let opened = open(&small, 0, small.len());
         assert_eq!((opened.slots, opened.len), ([3, 6, 5, 4], 4), "a, B, c, b");
+        assert_eq!(opened.spans, [1, 3, 1, 1], "B's subtree is B, d and e");
         // All directions positive: A before B, A1 before c, a before b.
         assert_eq!(opened.orders()[0], packed([0, 3, 2, 1]));
         // x negative: B first, then A; in A1 (split along x) b before a; then c.
@@ -1342,14 +1423,14 @@ mod tests {
         assert_eq!(opened.orders()[4], packed([0, 3, 2, 1]));
         // B large (half area 800 > A's 92): B is opened first, then A; A1 stays a child.
         let large = hand_tree(cube([10.0, 0.0, 0.0], [30.0, 20.0, 10.0]));
-        let opened = open(&large, 0);
+        let opened = open(&large, 0, large.len());
         assert_eq!((opened.slots, opened.len), ([2, 7, 8, 5], 4), "A1, d, e, c");
         assert_eq!(opened.orders()[0], packed([0, 3, 1, 2]));
         // z negative: e before d.
         assert_eq!(opened.orders()[4], packed([0, 3, 2, 1]));
         // A node over leaves only keeps fewer children: B alone opens into d and e; the
         // empty lanes come last in every order.
-        let opened = open(&large, 6);
+        let opened = open(&large, 6, 3);
         assert_eq!((&opened.slots[..2], opened.len), (&[7, 8][..], 2), "d, e");
         assert_eq!(opened.orders()[0], packed([0, 1, 2, 3]));
         assert_eq!(opened.orders()[4], packed([1, 0, 2, 3]));

@@ -19,7 +19,7 @@ pub use bvh::{
 /// Queries answer as a loop over all items in index order would.
 #[derive(Clone, Debug, Default)]
 pub struct Aggregate {
-    /// The bounded items, named by their item index ([`Bvh::relabel`]).
+    /// The bounded items, named by their item index ([`Bvh::with_ids`]).
     bvh: Bvh,
     /// Items without a finite box, ascending.
     unbounded: Vec<u32>,
@@ -28,21 +28,17 @@ pub struct Aggregate {
 impl Aggregate {
     /// The aggregate of items `0..boxes.len()`, item `i` bounded by `boxes[i]` (`None`, or a
     /// box with a non-finite corner: unbounded).
-    pub fn new(boxes: &[Option<Bounds3>]) -> Self {
-        let mut bounded = Vec::with_capacity(boxes.len());
+    pub fn new(boxes: impl IntoIterator<Item = Option<Bounds3>>) -> Self {
         let mut unbounded = Vec::new();
-        let mut bvh_boxes = Vec::with_capacity(boxes.len());
-        for (i, b) in boxes.iter().enumerate() {
-            match b {
-                Some(b) if b.min.is_finite() && b.max.is_finite() => {
-                    bounded.push(i as u32);
-                    bvh_boxes.push(*b);
-                }
-                _ => unbounded.push(i as u32),
+        // The bounded items go to the build as they come: no copy of their boxes is kept.
+        let bounded = (0u32..).zip(boxes).filter_map(|(i, b)| match b {
+            Some(b) if b.min.is_finite() && b.max.is_finite() => Some((i, b)),
+            _ => {
+                unbounded.push(i);
+                None
             }
-        }
-        let mut bvh = Bvh::new(&bvh_boxes);
-        bvh.relabel(&bounded);
+        });
+        let bvh = Bvh::with_ids(bounded);
         Aggregate { bvh, unbounded }
     }
 
