@@ -54,7 +54,9 @@ pub struct RenderReport {
 /// Checks `opts` against `scene` and builds what [`render_with_cancel`] takes: the prepared
 /// scene (with `opts`' patch method and root finder) and the settings (size, preview
 /// resolution, samples, depth). [`render_scene`] renders exactly this; other front ends (the
-/// `render serve` explorer) call it to get the same pixels without writing files.
+/// `render serve` explorer) call it to get the same pixels without writing files. The
+/// surfaces and the hierarchy are built in parallel on the current rayon pool: call it inside
+/// the pool that will trace ([`rayon::ThreadPool::install`]), as [`render_scene`] does.
 ///
 /// # Errors
 /// [`RenderError::Option`] for a size beyond the pixel limit or zero samples,

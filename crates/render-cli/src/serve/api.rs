@@ -425,7 +425,11 @@ fn render_job(
         opts.size = Some([w.div_ceil(scale), h.div_ceil(scale)]);
     }
     let setup_start = Instant::now();
-    let (prepared, mut settings) = render::prepare_render(&scene, &opts)
+    // On the shared pool, as the trace: the set-up is parallel too (surfaces, BVH), and on
+    // rayon's global pool it would run beside the bounded one.
+    let (prepared, mut settings) = state
+        .pool
+        .install(|| render::prepare_render(&scene, &opts))
         .map_err(|e| Failure::new(StatusCode::UNPROCESSABLE_ENTITY, chain(&e)))?;
     if scale > 1 {
         // A preview traces every pixel of the small image: Stam's `Resolution` cells would
