@@ -902,25 +902,14 @@ fn sah_split(
     if n <= MAX_LEAF_ITEMS && n as f64 * area <= best.0 {
         return None;
     }
-    // Partition in place, bins ≤ best first: from both ends, each misplaced pair swapped once
-    // (Hoare), where swapping every low item forward moved about half the items at each level.
-    let low = |it: &Item| bin_of(it) <= best.1;
-    let (mut i, mut j) = (0, n);
-    loop {
-        while i < j && low(&items[i]) {
-            i += 1;
+    // Partition in place: bins ≤ best first.
+    let mut mid = 0;
+    for i in 0..n {
+        if bin_of(&items[i]) <= best.1 {
+            items.swap(i, mid);
+            mid += 1;
         }
-        while i < j && !low(&items[j - 1]) {
-            j -= 1;
-        }
-        if i + 1 >= j {
-            break;
-        }
-        items.swap(i, j - 1);
-        i += 1;
-        j -= 1;
     }
-    let mid = i;
     if mid == 0 || mid == n {
         // Unreachable with a positive centre extent (the lowest and highest centres fall in
         // the first and last bins); halve by count rather than recurse forever.
