@@ -77,7 +77,7 @@ impl PreparedScene {
         };
         // Each object's surface is built on its own, on the current rayon pool: a large scene's
         // surfaces are tens of thousands of allocations, whose first touches of fresh memory
-        // are most of the work and go twice as fast on two cores (issue 12, balls-s5).
+        // are most of the work (`paper-notes/bvh.md`, nineteenth session).
         let surfaces = match scene
             .objects
             .par_iter()
@@ -87,13 +87,13 @@ impl PreparedScene {
         {
             Ok(surfaces) => surfaces,
             // The error of the first failing object, whichever the parallel build met first.
-            Err(_) => {
-                return Err(scene
+            Err(met) => {
+                let first = scene
                     .objects
                     .iter()
                     .enumerate()
-                    .find_map(|(index, object)| surface_of(index, object, &methods).err())
-                    .expect("an object failed"));
+                    .find_map(|(index, object)| surface_of(index, object, &methods).err());
+                return Err(first.unwrap_or(met));
             }
         };
         let mut materials: Vec<Material> = Vec::new();

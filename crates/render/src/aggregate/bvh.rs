@@ -739,7 +739,7 @@ fn open(binary: &[BinaryNode], b: usize, span: usize) -> Opened {
 /// the most nodes there can be and shrinking at the end raised the peak memory of the largest
 /// sphereflake: `paper-notes/bvh.md`, seventh pass) and so that the second can write the
 /// subtrees of a large node in parallel, each into its own share of the array, as [`build`]
-/// writes the binary tree. Serial, this was a third of the 66 430-sphere hierarchy's build.
+/// writes the binary tree (`paper-notes/bvh.md`, nineteenth session).
 fn collapse(binary: &[BinaryNode]) -> (Vec<Node>, usize) {
     let sizes: Vec<AtomicU32> = (0..binary.len()).map(|_| AtomicU32::new(0)).collect();
     let n = count_nodes(binary, 0, binary.len(), &sizes) as usize;

@@ -26,8 +26,8 @@ pub struct Aggregate {
 }
 
 impl Aggregate {
-    /// The aggregate of items `0..boxes.len()`, item `i` bounded by `boxes[i]` (`None`, or a
-    /// box with a non-finite corner: unbounded).
+    /// The aggregate of items `0, 1, …`, item `i` bounded by the `i`-th box of `boxes` (`None`,
+    /// or a box with a non-finite corner: unbounded).
     pub fn new(boxes: impl IntoIterator<Item = Option<Bounds3>>) -> Self {
         let mut unbounded = Vec::new();
         // The bounded items go to the build as they come: no copy of their boxes is kept.
