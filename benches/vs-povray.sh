@@ -5,7 +5,8 @@
 # benches/pov/*.pov; the teapot's patches are converted from scenes/teapot.bpt here).
 # Then the Standard Procedural Databases at 512 x 512 (NFF for us, the generators' .pov twins for
 # POV-Ray; from $SPD_DIR, default ../shared/data/spd beside the repository, else scenes/spd; and
-# lattice, rings, shells, teapot and tree, which benches/spd/generate.py writes in both languages), with
+# jacks, lattice, rings, shells, sombrero, teapot and tree, which benches/spd/generate.py writes
+# in both languages), with
 # each renderer's peak memory (/usr/bin/time -v), and an n x n torus grid over a plane at 400 x 400
 # (generated here in both languages; n = 3, 10, 30, 60). Times in seconds: wall and CPU (user +
 # system), ratios ours / POV-Ray.
@@ -140,7 +141,12 @@ spd=${SPD_DIR:-$root/../shared/data/spd}
 echo
 header "SPD (512x512)"
 # The SPD scenes the shared data does not hold, written here by our generator in both languages.
-for g in lattice rings shells teapot tree; do python3 "$here/spd/generate.py" "$g" "$out/spd" >/dev/null; done
+for g in jacks lattice rings shells sombrero teapot tree; do
+    python3 "$here/spd/generate.py" "$g" "$out/spd" >/dev/null
+done
+# jacks and sombrero at their default size are one jack (9 objects) and 1 922 triangles: also
+# at size 4 (5 265 objects; 130 050 triangles).
+for g in jacks sombrero; do python3 "$here/spd/generate.py" "$g" -s 4 "$out/spd" >/dev/null; done
 for f in "$spd"/*.nff "$out/spd"/*.nff; do
     name=$(basename "$f" .nff)
     case " ${SPD_SCENES:-$name} " in *" $name "*) ;; *) continue ;; esac

@@ -3,12 +3,15 @@
 
 Eric Haines' Standard Procedural Databases (1987) are defined by their generators; the shared
 data holds the output of four of them (balls, gears, mount, tetra). This script is our own
-writer of five more, from the geometry their public-domain sources describe (none of their
-code): `lattice` (shiny spheres joined by matte cylinders in a cube), `rings` (pyramids of
-objects made of six pentagonal rings of cylinders and spheres, before a wall), `shells`
-(Pickover's shell of overlapping spheres), `teapot` (Newell's teapot tessellated into
+writer of seven more, from the geometry their public-domain sources describe (none of their
+code): `jacks` (recursive jacks of cylinders and spheres), `lattice` (shiny spheres joined by
+matte cylinders in a cube), `rings` (pyramids of objects made of six pentagonal rings of
+cylinders and spheres, before a wall), `shells` (Pickover's shell of overlapping spheres),
+`sombrero` (a height field of triangles), `teapot` (Newell's teapot tessellated into
 triangles with vertex normals, on a checkerboard) and `tree` (Aono and Kunii's tree of cones
 and spheres over a field). Each function's docstring gives its counts at a size factor `s`.
+The generators write `sombrero`'s POV-Ray twin as a `height_field` of a TGA image; ours writes
+the same triangles as the NFF file, so both renderers trace one geometry.
 
 The NFF file follows NFF.TXT (`c` entities are open cones); the POV-Ray twin writes the same
 camera (direction, right and up scaled by the frustum at the NFF field of view), the lights
@@ -17,7 +20,7 @@ not share the light out; NFF readers do), `cone { … open }` for each cone, and
 the material's parameters: the generator's ambient, diffuse, Phong highlight, reflection (the
 NFF `Ks`).
 
-    python3 benches/spd/generate.py lattice|rings|shells|teapot|tree [-s N] OUT_DIR
+    python3 benches/spd/generate.py jacks|lattice|rings|shells|sombrero|teapot|tree [-s N] OUT_DIR
         # writes OUT_DIR/NAME[-sN].nff and .pov (the generator's default size: NAME)
 """
 
@@ -105,6 +108,12 @@ class Writer:
         self.pov.write("polygon {\n    %d,\n%s\n    texture { %s }\n}\n\n"
                        % (len(vertices), body, self.texture))
 
+    def triangle(self, vertices):
+        """NFF's `p 3`, POV-Ray's `triangle` (as the SPD's own POV-Ray writer has it)."""
+        self.nff.write("p 3\n" + "".join("%g %g %g\n" % v for v in vertices))
+        body = ",\n".join("    <%g, %g, %g>" % v for v in vertices)
+        self.pov.write("triangle {\n%s\n    texture { %s }\n}\n\n" % (body, self.texture))
+
     def smooth_triangle(self, vertices, normals):
         """NFF's `pp` (a polygon with a normal at each vertex), POV-Ray's `smooth_triangle`."""
         self.nff.write("pp 3\n" + "".join("%g %g %g %g %g %g\n" % (*v, *n)
@@ -168,10 +177,10 @@ def matrix_product(a, b):
 
 
 def rotation(axis, degrees):
-    """Counter-clockwise about the x (0) or z (2) axis, for row vectors."""
+    """Counter-clockwise about the x (0), y (1) or z (2) axis, for row vectors."""
     c, s = math.cos(math.radians(degrees)), math.sin(math.radians(degrees))
     m = [[1.0 if i == j else 0.0 for j in range(4)] for i in range(4)]
-    i, j = (1, 2) if axis == 0 else (0, 1)
+    i, j = [(1, 2), (2, 0), (0, 1)][axis]
     m[i][i], m[i][j], m[j][i], m[j][j] = c, s, -s, c
     return m
 
@@ -336,8 +345,77 @@ def teapot(w, size):
                     w.smooth_triangle(v, n)
 
 
-GENERATORS = {"lattice": (lattice, 12), "rings": (rings, 7), "shells": (shells, 5),
-              "teapot": (teapot, 6), "tree": (tree, 11)}
+def phong_power(degrees):
+    """The highlight exponent whose lobe falls to half at `degrees` off the mirror direction,
+    as the generators turn their highlight angle into NFF's `Shine` and POV-Ray's
+    `phong_size`."""
+    return math.log(0.5) / math.log(math.cos(math.radians(degrees)))
+
+
+def jacks(w, size):
+    """Enzmann's recursive jacks: a jack (three crossed cylinders, a sphere at each of their six
+    ends) with a half-size copy of the whole in each of its eight octants, tilted by −20° about
+    y, then −30° about x; one light. `9·(8^s − 1)/7` objects (`s = 1`, the default: one jack
+    of 9; `s = 4`: 5 265)."""
+    w.background((0.2, 0.05, 0.2))
+    w.view((0.0, 0.0, -8.0), (0.0, 0.0, 0.0), (0.0, 1.0, 0.0), 25.0, 0.001, 256)
+    w.light((-10.0, 3.0, -20.0), 1.0)
+    w.material((0.737, 0.561, 0.561), 0.7, 0.7, 0.4, phong_power(20.0), ka=0.1)
+    tilt = matrix_product(rotation(1, -20.0), rotation(0, -30.0))
+
+    def place(offset, scale, p):
+        return apply(tilt, tuple(o + scale * c for o, c in zip(offset, p)))
+
+    def jack(offset, scale, depth):
+        arm = 0.75 * scale  # the jack is drawn at three quarters of its cell
+        for axis in range(3):
+            end = [0.0, 0.0, 0.0]
+            end[axis] = 1.0
+            w.cone(place(offset, arm, tuple(-c for c in end)), 0.1 * arm,
+                   place(offset, arm, tuple(end)), 0.1 * arm)
+        for axis in range(3):
+            for sign in (1.0, -1.0):
+                end = [0.0, 0.0, 0.0]
+                end[axis] = sign
+                w.sphere(place(offset, arm, tuple(end)), 0.2 * arm)
+        if depth < size:
+            for i in (-0.5, 0.5):
+                for j in (-0.5, 0.5):
+                    for k in (-0.5, 0.5):
+                        child = tuple(o + scale * c for o, c in zip(offset, (i, j, k)))
+                        jack(child, 0.5 * scale, depth + 1)
+
+    jack((0.0, 0.0, 0.0), 1.0, 1)
+
+
+def sombrero(w, size):
+    """Enzmann's sombrero: the height field `y = −3 + cos(2πr)·e^(−r)` (`r` the distance from
+    the axis) sampled on an `n × n` grid of `[−4, 4)²` and drawn over `[−4, 4]²` as two flat
+    triangles a cell, shiny red; one light. `n = 32·2^(s−1)`, `2·(n − 1)²` triangles
+    (`s = 1`, the default: 1 922; `s = 4`: 130 050)."""
+    w.background((0.078, 0.361, 0.753))
+    w.view((0.0, 5.0, -8.0), (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), 40.0, 0.01, 512)
+    w.light((10.0, 10.0, -10.0), 1.0)
+    w.material((1.0, 0.1, 0.1), 0.8, 0.0, 0.5, phong_power(40.0), ka=0.1)
+    n = 32 << (size - 1)
+    # Sampled at −4 + 8k/n, drawn at −4 + 8k/(n − 1): the generator's two spacings.
+    heights = [[math.cos(2.0 * math.pi * math.hypot(-4.0 + 8.0 * j / n, -4.0 + 8.0 * i / n))
+                * math.exp(-math.hypot(-4.0 + 8.0 * j / n, -4.0 + 8.0 * i / n))
+                for j in range(n)] for i in range(n)]
+    step = 8.0 / (n - 1)
+
+    def vertex(i, j):
+        return (-4.0 + j * step, -3.0 + heights[i][j], -4.0 + i * step)
+
+    for i in range(n - 1):
+        for j in range(n - 1):
+            w.triangle([vertex(i, j), vertex(i + 1, j + 1), vertex(i, j + 1)])
+            w.triangle([vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1)])
+
+
+GENERATORS = {"jacks": (jacks, 1), "lattice": (lattice, 12), "rings": (rings, 7),
+              "shells": (shells, 5), "sombrero": (sombrero, 1), "teapot": (teapot, 6),
+              "tree": (tree, 11)}
 
 
 def main():
