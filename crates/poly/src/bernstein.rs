@@ -350,10 +350,11 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
         // still bounds every absolute-value weight (module docs) and earlier errors are not
         // amplified, and its two products add at most two underflow units per level, the
         // allowance per cut in `tiny` (a halving's product by 1/2 adds one).
+        // (Exclusive ranges, for the reason given in `bernstein_on`.)
         let (mid, per_level, (left_jump, right_jump)) = match cut {
             Cut::Half => {
-                for r in 1..=n {
-                    for i in 0..=(n - r) {
+                for r in 1..n + 1 {
+                    for i in 0..n + 1 - r {
                         rv[i] = (rv[i] + rv[i + 1]) * 0.5;
                     }
                     lv[r] = rv[0];
@@ -364,8 +365,8 @@ impl<'p, S: Coeffs> BernsteinIsolator<'p, S> {
             Cut::Unresolvable => unreachable!("an unresolvable node is not split"),
             Cut::Jump { lambda, u, jump } => {
                 let mu = 1.0 - lambda;
-                for r in 1..=n {
-                    for i in 0..=(n - r) {
+                for r in 1..n + 1 {
+                    for i in 0..n + 1 - r {
                         rv[i] = mu * rv[i] + lambda * rv[i + 1];
                     }
                     lv[r] = rv[0];
@@ -884,6 +885,12 @@ const RECIP_BINOM: [[f64; RECIP_ROWS]; RECIP_ROWS] = {
 fn bernstein_on(p: &[f64], n: usize, a: f64, w: f64, v: &mut [f64]) -> u32 {
     debug_assert_eq!(n + 1, p.len(), "the degree of p");
     let (p, v) = (&p[..=n], &mut v[..=n]);
+    // Every loop here runs over an exclusive range (`1..n + 1`, not `1..=n`): the iterator of
+    // an inclusive range carries an "exhausted" flag that the compiler did not fold away, and
+    // the loops were then neither unrolled nor freed of bounds checks at the exact-size
+    // degrees — a tenth of the torus entry queries' instructions (`paper-notes/isolation.md`,
+    // "Exclusive ranges in the inner loops"). The same holds for every basis-change loop of
+    // this crate.
     // Step 1: Taylor shift and scaling, q(u) = p(a + w·u), by Horner's rule on
     // polynomials: out ← out·(a + w·u) + c_k. Per step a path meets one product and at
     // most two sums: 3 roundings per step.
@@ -900,7 +907,7 @@ fn bernstein_on(p: &[f64], n: usize, a: f64, w: f64, v: &mut [f64]) -> u32 {
     } else {
         for k in (0..n).rev() {
             let len = n - k;
-            for i in (1..=len).rev() {
+            for i in (1..len + 1).rev() {
                 v[i] = v[i] * a + v[i - 1] * w;
             }
             v[0] = v[0] * a + p[k];
@@ -910,8 +917,8 @@ fn bernstein_on(p: &[f64], n: usize, a: f64, w: f64, v: &mut [f64]) -> u32 {
     // as a division by C(n,j) (two roundings: the binomial and the quotient) followed by
     // n passes of neighbour sums (one rounding each).
     let binom_ops = binomial_row_into(n, v);
-    for r in 1..=n {
-        for i in (r..=n).rev() {
+    for r in 1..n + 1 {
+        for i in (r..n + 1).rev() {
             v[i] += v[i - 1];
         }
     }

@@ -147,8 +147,9 @@ impl<'c> DdBernstein<'c> {
             }
             *vj = vj.div_f(binom as f64);
         }
-        for pass in 1..=n {
-            for i in (pass..=n).rev() {
+        // Exclusive ranges, as in `bernstein::bernstein_on` (unrolled loops).
+        for pass in 1..n + 1 {
+            for i in (pass..n + 1).rev() {
                 v[i] = v[i].add(v[i - 1]);
             }
         }
@@ -433,8 +434,9 @@ fn halve(arena: &mut SmallVec<[Dd; 64]>, at: usize, n: usize) {
     arena.resize(at + 2 * (n + 1), Dd::default());
     let (right, left) = arena[at..].split_at_mut(n + 1);
     left[0] = right[0];
-    for r in 1..=n {
-        for i in 0..=n - r {
+    // Exclusive ranges, as in `bernstein::bernstein_on` (unrolled loops).
+    for r in 1..n + 1 {
+        for i in 0..n + 1 - r {
             right[i] = right[i].average(right[i + 1]);
         }
         left[r] = right[0];

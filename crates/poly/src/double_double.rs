@@ -49,8 +49,9 @@ pub(crate) fn taylor_shift_into(c: &[f64], e: f64, v: &mut [Dd]) {
         return;
     }
     v[0] = Dd::from_f64(c[n]);
+    // Exclusive ranges, as in `bernstein::bernstein_on` (unrolled loops).
     for k in (0..n).rev() {
-        for i in (1..=n - k).rev() {
+        for i in (1..n - k + 1).rev() {
             v[i] = v[i].mul_f(e).add(v[i - 1]);
         }
         v[0] = v[0].mul_f(e).add_f(c[k]);

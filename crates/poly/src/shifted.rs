@@ -299,8 +299,9 @@ fn expand(c: &[f64], at: f64) -> Option<(Coeffs, Coeffs)> {
     let a = a.as_mut_slice();
     let e = at.abs();
     a[0] = c[n].abs();
+    // Exclusive ranges, as in `bernstein::bernstein_on` (unrolled loops).
     for k in (0..n).rev() {
-        for i in (1..=n - k).rev() {
+        for i in (1..n - k + 1).rev() {
             a[i] = a[i] * e + a[i - 1];
         }
         a[0] = a[0] * e + c[k].abs();
