@@ -163,10 +163,12 @@ impl RawArgs {
 }
 
 fn run(args: &RawArgs, cancel: &Cancel) -> anyhow::Result<()> {
-    let parse_start = Instant::now();
-    let scene = render::scene::load(&args.scene)?;
-    let parse = parse_start.elapsed();
     let opts = args.to_options();
+    // One pool for the whole run: a large NFF file is read on its threads, then traced.
+    let pool = render::thread_pool(opts.threads)?;
+    let parse_start = Instant::now();
+    let scene = pool.install(|| render::scene::load(&args.scene))?;
+    let parse = parse_start.elapsed();
 
     let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden());
     let show = std::io::stderr().is_terminal();
@@ -190,7 +192,7 @@ fn run(args: &RawArgs, cancel: &Cancel) -> anyhow::Result<()> {
         bar.set_position(u64::from(done));
     };
     let report =
-        render::render_scene_with_cancel(&scene, Some(&args.scene), &opts, &progress, cancel)
+        render::render_scene_in(&pool, &scene, Some(&args.scene), &opts, &progress, cancel)
             .with_context(|| format!("cannot render {}", args.scene.display()));
     bar.finish_and_clear();
     let mut report = report?;

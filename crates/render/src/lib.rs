@@ -123,7 +123,8 @@ pub use crate::output::{
     write_atomically, write_pfm, write_png,
 };
 pub use crate::pipeline::{
-    RenderError, RenderReport, prepare_render, render_scene, render_scene_with_cancel,
+    RenderError, RenderReport, prepare_render, render_scene, render_scene_in,
+    render_scene_with_cancel, thread_pool,
 };
 pub use crate::prepared::PreparedScene;
 pub use crate::scene::Scene;

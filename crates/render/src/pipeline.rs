@@ -104,6 +104,39 @@ pub fn render_scene_with_cancel(
     progress: &(dyn Fn(u32, u32) + Sync),
     cancel: &Cancel,
 ) -> Result<RenderReport, RenderError> {
+    let pool = thread_pool(opts.threads)?;
+    render_scene_in(&pool, scene, scene_path, opts, progress, cancel)
+}
+
+/// The worker pool of a render: `threads` threads (all cores when `None`). A front end that
+/// loads the scene too builds it first and loads inside it ([`rayon::ThreadPool::install`]),
+/// so that a large NFF file is read on the render's threads
+/// ([`parse_nff`](crate::scene::parse_nff)), then renders with [`render_scene_in`]: one pool
+/// per render, and never rayon's global one.
+///
+/// # Errors
+/// [`RenderError::Threads`] when the threads cannot start.
+pub fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, RenderError> {
+    let mut builder = rayon::ThreadPoolBuilder::new();
+    if let Some(t) = threads {
+        builder = builder.num_threads(t);
+    }
+    builder.build().map_err(|source| RenderError::Threads {
+        threads: threads.unwrap_or(0),
+        source,
+    })
+}
+
+/// [`render_scene_with_cancel`] on the worker pool `pool` ([`thread_pool`]) instead of one of
+/// its own; `opts.threads` is not read.
+pub fn render_scene_in(
+    pool: &rayon::ThreadPool,
+    scene: &ValidScene,
+    scene_path: Option<&Path>,
+    opts: &RenderOptions,
+    progress: &(dyn Fn(u32, u32) + Sync),
+    cancel: &Cancel,
+) -> Result<RenderReport, RenderError> {
     if !matches!(opts.png.bits, 8 | 16) {
         return Err(OutputError::BitDepth(opts.png.bits).into());
     }
@@ -113,15 +146,6 @@ pub fn render_scene_with_cancel(
     let inputs: Vec<&Path> = scene_path.into_iter().collect();
     let mut outputs = PendingOutputs::prepare(&targets, &inputs)?;
     let setup_start = Instant::now();
-    let mut builder = rayon::ThreadPoolBuilder::new();
-    if let Some(t) = opts.threads {
-        builder = builder.num_threads(t);
-    }
-    let requested = opts.threads.unwrap_or(0);
-    let pool = builder.build().map_err(|source| RenderError::Threads {
-        threads: requested,
-        source,
-    })?;
     // The set-up's parallel parts (surfaces, BVH) run on the render's threads too: on rayon's
     // global pool they ignored `--threads` and started a second pool.
     let (prepared, settings) = pool.install(|| prepare_render(scene, opts))?;

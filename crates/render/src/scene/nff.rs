@@ -6,14 +6,15 @@
 //!
 //! The format is line-based: every entity's numbers sit on the lines the specification gives
 //! them, and a missing, extra or malformed number is an error naming `file:line:column`
-//! ([`Span`]) like the scene language's. The reader is a single pass over the text with no
-//! allocation per number, so the 66 430-sphere `balls-s5.nff` (2.7 MB) reads in a few tens of
-//! milliseconds (`docs/speed.md`).
+//! ([`Span`]) like the scene language's. The reader makes no allocation per number, and reads
+//! a large text in parts on the caller's thread pool, so the 66 430-sphere `balls-s5.nff`
+//! (2.7 MB) reads in a few tens of milliseconds (`docs/speed.md`).
 
 use std::path::Path;
 use std::sync::Arc;
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use super::error::{ErrorKind, SceneError, Span};
 use super::lexer::{TextLines, end_position, text_lines};
@@ -48,8 +49,7 @@ pub fn is_nff(path: &Path, text: &str) -> bool {
         let mut words = line.split_ascii_whitespace();
         let first = words.next().unwrap_or("");
         let second = words.next().unwrap_or("");
-        return matches!(first, "v" | "b" | "l" | "f" | "c" | "s" | "p" | "pp")
-            && !second.starts_with('=');
+        return is_entity(first) && !second.starts_with('=');
     }
     false
 }
@@ -86,7 +86,9 @@ pub fn nff_material(color: Rgb, kd: f64, ks: f64, shine: f64, t: f64, ior: f64) 
     }
 }
 
-/// Reads an NFF scene. `file` names the text in error messages.
+/// Reads an NFF scene. `file` names the text in error messages. Called on a thread of a rayon
+/// pool (the render's, [`thread_pool`](crate::thread_pool)), a large text is read in parts on
+/// that pool's threads; elsewhere in one pass. The scene and the errors are the same.
 ///
 /// # Errors
 /// [`SceneError::At`] at the offending token: an unknown entity, a missing, extra or
@@ -104,10 +106,67 @@ pub fn nff_material(color: Rgb, kd: f64, ks: f64, shine: f64, t: f64, ior: f64) 
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn parse_nff(text: &str, file: &Path) -> Result<ValidScene, SceneError> {
+    // In parts only on a pool's thread: `current_num_threads` elsewhere would start rayon's
+    // global pool, whatever threads the caller asked its own pool for.
+    let parts = if text.len() >= PARALLEL_MIN_BYTES && rayon::current_thread_index().is_some() {
+        rayon::current_num_threads()
+    } else {
+        1
+    };
+    parse_nff_in(text, file, parts)
+}
+
+/// Texts from this size on are read in parts, one a thread of the current rayon pool: the
+/// 2.7 MB `balls-s5.nff` took 25 ms on one thread (`docs/speed.md`, twentieth session), and
+/// below a few hundred kilobytes a part would cost more to start than it saves.
+const PARALLEL_MIN_BYTES: usize = 1 << 18;
+
+/// [`parse_nff`] reading `text` in up to `parts` parts side by side (one part: one pass).
+///
+/// Each part starts on a line whose first word is an entity keyword ([`is_entity`]): no such
+/// line is ever a data line of a valid file (data lines hold numbers; the view's sub-lines
+/// start with their own names), so the parts split no entity. What crosses a boundary is the
+/// material in force (an `f` lights every object after it), the uncoloured lights' shared
+/// intensity and the last `v` and `b`; [`Part`] records them and the merge applies them in
+/// order, so the scene is the one a single pass builds (test
+/// `reading_in_parts_builds_the_scene_of_one_pass`). When a part fails, the text is read
+/// again in one pass for its first error, so errors do not depend on the split either.
+fn parse_nff_in(text: &str, file: &Path, parts: usize) -> Result<ValidScene, SceneError> {
     let file: Arc<Path> = Arc::from(file);
-    let mut r = Reader {
-        lines: text_lines(text).enumerate(),
-        file: &file,
+    let starts = part_starts(text, parts);
+    // The first part's arrays become the scene's, so they are reserved for the whole text:
+    // the other parts' objects are then appended without moving the first part's.
+    let whole = object_capacity(text);
+    let read = if starts.len() == 1 {
+        vec![parse_part(text, 0, &file, whole)]
+    } else {
+        starts
+            .par_iter()
+            .enumerate()
+            .map(|(k, &(at, first_line))| {
+                let end = starts.get(k + 1).map_or(text.len(), |&(next, _)| next);
+                let part = &text[at..end];
+                let capacity = if k == 0 { whole } else { object_capacity(part) };
+                parse_part(part, first_line, &file, capacity)
+            })
+            .collect()
+    };
+    let read = match read.into_iter().collect::<Result<Vec<Part>, SceneError>>() {
+        Ok(read) => read,
+        Err(e) if starts.len() == 1 => return Err(e),
+        Err(_) => {
+            return Err(parse_part(text, 0, &file, whole).err().unwrap_or_else(|| {
+                // A part failed where the whole text does not: impossible when the parts split
+                // no entity (see above); reported rather than asserted.
+                SceneError::at(
+                    &end_position(text, file.clone()),
+                    ErrorKind::Expected {
+                        expected: "a text the parallel reader splits between entities".into(),
+                        found: "a part it could not read".into(),
+                    },
+                )
+            }));
+        }
     };
     let mut scene = Scene::default();
     scene.world.background = Rgb::ZERO;
@@ -115,14 +174,151 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<ValidScene, SceneError> {
         size: [DEFAULT_RESOLUTION; 2],
         resolution: [1, 1],
     };
+    let mut spans = SceneSpans::default();
     let mut material = Material::default();
+    let mut uncoloured = Vec::new();
+    for (k, part) in read.into_iter().enumerate() {
+        let Part {
+            objects: mut objects_read,
+            object_spans,
+            inherited,
+            material: last_material,
+            lights,
+            light_spans,
+            uncoloured: part_uncoloured,
+            view,
+            background,
+        } = part;
+        for object in &mut objects_read[..inherited] {
+            object.material = material.clone();
+        }
+        if let Some(m) = last_material {
+            material = m;
+        }
+        if k == 0 {
+            scene.objects = objects_read;
+            spans.objects = object_spans;
+        } else {
+            scene.objects.append(&mut objects_read);
+            spans.objects.extend(object_spans);
+        }
+        uncoloured.extend(part_uncoloured.iter().map(|i| i + scene.lights.len()));
+        scene.lights.extend(lights);
+        spans.lights.extend(light_spans);
+        if let Some((camera, size, span)) = view {
+            scene.camera = camera;
+            scene.viewport.size = size;
+            spans.camera = Some(span);
+            spans.viewport = spans.camera.clone();
+        }
+        if let Some((color, span)) = background {
+            scene.world.background = color;
+            spans.world = Some(span);
+        }
+    }
     // Lights without a colour share a unit total intensity, 1/√n each (as the SPD's POV-Ray
     // writer does), set once all are read.
-    let mut uncoloured = Vec::new();
-    let mut spans = SceneSpans::default();
-    let capacity = object_capacity(text);
-    scene.objects.reserve(capacity);
-    spans.objects.reserve(capacity);
+    let share = 1.0 / (uncoloured.len().max(1) as f64).sqrt();
+    for i in uncoloured {
+        scene.lights[i].color = Rgb::splat(share);
+    }
+    spans.validate(scene, &end_position(text, file.clone()))
+}
+
+/// What one part of an NFF text holds, in the order read ([`parse_nff_in`]).
+struct Part {
+    /// Its objects; those before its first `f` carry a placeholder material.
+    objects: Vec<Object>,
+    object_spans: Vec<Span>,
+    /// How many objects come before its first `f`: they take the material in force where the
+    /// part begins.
+    inherited: usize,
+    /// The material in force at its end, when it has an `f`.
+    material: Option<Material>,
+    lights: Vec<Light>,
+    light_spans: Vec<Span>,
+    /// Its lights without a colour (indices into `lights`).
+    uncoloured: Vec<usize>,
+    /// Its last `v`: the camera, the image size and the entity's span.
+    view: Option<(CameraSpec, [u32; 2], Span)>,
+    /// Its last `b`: the colour and the entity's span.
+    background: Option<(Rgb, Span)>,
+}
+
+/// Where the parts of [`parse_nff_in`] begin: byte offsets and the number of lines before
+/// each (so that spans keep the file's line numbers), the first part at 0. A part begins at
+/// the first line at or after its share of the text whose first word is an entity keyword;
+/// fewer parts when there is no such line.
+fn part_starts(text: &str, parts: usize) -> Vec<(usize, u32)> {
+    let mut starts = vec![(0, 0)];
+    for k in 1..parts.max(1) {
+        let target = text.len() / parts * k;
+        let (last, _) = starts[starts.len() - 1];
+        // From the start of the line after the one holding `target`.
+        let Some(end) = memchr::memchr2(b'\n', b'\r', &text.as_bytes()[target.max(last)..]) else {
+            break;
+        };
+        let mut at = target.max(last) + end;
+        at += if text[at..].starts_with("\r\n") { 2 } else { 1 };
+        let mut found = None;
+        let mut offset = at;
+        for line in text_lines(&text[at..]) {
+            let word = comment_free(line).split_ascii_whitespace().next();
+            if word.is_some_and(is_entity) {
+                found = Some(offset);
+                break;
+            }
+            // The line and its end (`\r\n` counts two bytes).
+            offset += line.len();
+            offset += if text[offset..].starts_with("\r\n") {
+                2
+            } else {
+                1
+            };
+        }
+        let Some(at) = found else {
+            break;
+        };
+        let lines = text_lines(&text[..at]).count();
+        let Ok(lines) = u32::try_from(lines) else {
+            break;
+        };
+        starts.push((at, lines));
+    }
+    starts
+}
+
+/// Whether `word` begins an NFF entity.
+fn is_entity(word: &str) -> bool {
+    matches!(word, "v" | "b" | "l" | "f" | "c" | "s" | "p" | "pp")
+}
+
+/// Reads one part of an NFF text, whose first line is line `first_line + 1` of the file, into
+/// object arrays reserved for `capacity` objects.
+fn parse_part(
+    text: &str,
+    first_line: u32,
+    file: &Arc<Path>,
+    capacity: usize,
+) -> Result<Part, SceneError> {
+    let mut r = Reader {
+        lines: text_lines(text).enumerate(),
+        first_line,
+        file,
+    };
+    let mut part = Part {
+        objects: Vec::with_capacity(capacity),
+        object_spans: Vec::with_capacity(capacity),
+        inherited: 0,
+        material: None,
+        lights: Vec::new(),
+        light_spans: Vec::new(),
+        uncoloured: Vec::new(),
+        view: None,
+        background: None,
+    };
+    // Until the part's first `f`, objects take a placeholder, replaced when the parts merge.
+    let mut material = Material::default();
     while let Some(mut line) = r.next_line() {
         let Some((keyword, at)) = line.word() else {
             continue; // unreachable: `next_line` skips lines without words
@@ -130,13 +326,12 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<ValidScene, SceneError> {
         match keyword {
             "v" => {
                 line.finish()?;
-                read_view(&mut r, &line, &mut scene)?;
-                spans.camera = Some(r.span(&line, at));
-                spans.viewport = spans.camera.clone();
+                let (camera, size) = read_view(&mut r, &line)?;
+                part.view = Some((camera, size, r.span(&line, at)));
             }
             "b" => {
-                scene.world.background = line.vector("the background colour")?;
-                spans.world = Some(r.span(&line, at));
+                let color = line.vector("the background colour")?;
+                part.background = Some((color, r.span(&line, at)));
                 line.finish()?;
             }
             "l" => {
@@ -144,12 +339,12 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<ValidScene, SceneError> {
                 let color = if line.peek().is_some() {
                     line.vector("the light colour")?
                 } else {
-                    uncoloured.push(scene.lights.len());
+                    part.uncoloured.push(part.lights.len());
                     Rgb::ONE
                 };
                 line.finish()?;
-                scene.lights.push(Light { source, color });
-                spans.lights.push(r.span(&line, at));
+                part.lights.push(Light { source, color });
+                part.light_spans.push(r.span(&line, at));
             }
             "f" => {
                 let color = line.vector("the fill colour")?;
@@ -177,6 +372,10 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<ValidScene, SceneError> {
                     ior = 1.0;
                 }
                 material = nff_material(color, kd, ks, shine, t, ior);
+                if part.material.is_none() {
+                    part.inherited = part.objects.len();
+                }
+                part.material = Some(material.clone());
             }
             "s" => {
                 let center = line.vector("the sphere's centre")?;
@@ -185,7 +384,7 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<ValidScene, SceneError> {
                 let radius = line.number("the sphere's radius")?.abs();
                 line.finish()?;
                 let shape = ShapeKind::Sphere { center, radius };
-                push(&mut scene, &mut spans, shape, &material, r.span(&line, at))?;
+                push(&mut part, shape, &material, r.span(&line, at))?;
             }
             "c" => {
                 line.finish()?;
@@ -204,7 +403,7 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<ValidScene, SceneError> {
                     apex_radius: ra,
                     caps: false,
                 };
-                push(&mut scene, &mut spans, shape, &material, r.span(&line, at))?;
+                push(&mut part, shape, &material, r.span(&line, at))?;
             }
             "p" | "pp" => {
                 let smooth = keyword == "pp";
@@ -229,7 +428,7 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<ValidScene, SceneError> {
                     },
                     (false, _) => ShapeKind::Polygon { vertices },
                 };
-                push(&mut scene, &mut spans, shape, &material, r.span(&line, at))?;
+                push(&mut part, shape, &material, r.span(&line, at))?;
             }
             other => {
                 return Err(SceneError::at(
@@ -242,11 +441,10 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<ValidScene, SceneError> {
             }
         }
     }
-    let share = 1.0 / (uncoloured.len().max(1) as f64).sqrt();
-    for i in uncoloured {
-        scene.lights[i].color = Rgb::splat(share);
+    if part.material.is_none() {
+        part.inherited = part.objects.len();
     }
-    spans.validate(scene, &end_position(text, file.clone()))
+    Ok(part)
 }
 
 /// An upper bound on the objects of an NFF text, for reserving the object arrays once: every
@@ -262,8 +460,7 @@ fn object_capacity(text: &str) -> usize {
 /// degenerate one at `span`, and records `span` for the scene-level checks at the end of the
 /// load.
 fn push(
-    scene: &mut Scene,
-    spans: &mut SceneSpans,
+    part: &mut Part,
     shape: ShapeKind,
     material: &Material,
     span: Span,
@@ -285,13 +482,13 @@ fn push(
     let mut object = Object::new(shape);
     object.placement().map_err(located)?;
     object.material = material.clone();
-    scene.objects.push(object);
-    spans.objects.push(span);
+    part.objects.push(object);
+    part.object_spans.push(span);
     Ok(())
 }
 
 /// The `v` entity's six sub-lines, in the specification's order.
-fn read_view<'a>(r: &mut Reader<'a>, v: &Line<'a>, scene: &mut Scene) -> Result<(), SceneError> {
+fn read_view<'a>(r: &mut Reader<'a>, v: &Line<'a>) -> Result<(CameraSpec, [u32; 2]), SceneError> {
     let mut last = v.clone();
     let mut from = view_line(r, &mut last, "from")?;
     let eye = from.vector("the eye position")?;
@@ -328,15 +525,15 @@ fn read_view<'a>(r: &mut Reader<'a>, v: &Line<'a>, scene: &mut Scene) -> Result<
                 )
             })
     };
-    scene.viewport.size = [side(w, &res)?, side(h, &res)?];
+    let size = [side(w, &res)?, side(h, &res)?];
     // NFF's angle spans the image from the top row to the bottom row: the vertical field.
-    scene.camera = CameraSpec::LookAt(LookAtCamera {
+    let camera = CameraSpec::LookAt(LookAtCamera {
         eye,
         look_at,
         up: up_v,
         view_field_deg: fov,
     });
-    Ok(())
+    Ok((camera, size))
 }
 
 /// The next sub-line of a `v` entity, which must start with `name`.
@@ -363,6 +560,8 @@ fn comment_free(line: &str) -> &str {
 /// The lines of the text, numbered from 1, with comments and blank lines skipped.
 struct Reader<'a> {
     lines: std::iter::Enumerate<TextLines<'a>>,
+    /// The lines of the file before the text read (a part's, [`parse_nff_in`]).
+    first_line: u32,
     file: &'a Arc<Path>,
 }
 
@@ -389,7 +588,7 @@ impl<'a> Reader<'a> {
             }
             return Some(Line {
                 raw,
-                no: i as u32 + 1,
+                no: self.first_line + i as u32 + 1,
                 words: body.split_ascii_whitespace(),
                 file: self.file,
             });
@@ -534,6 +733,93 @@ mod tests {
             );
         }
         assert_eq!(object_capacity("s 0 0 0 1\ns 1 0 0 1"), 2);
+    }
+
+    /// Reading a text in 2 to 9 parts builds the scene a single pass builds — objects with
+    /// their materials across `f` lines on either side of a boundary, uncoloured lights
+    /// sharing one intensity, the last `v` and `b` — on the committed SPD scenes and on a text
+    /// with every entity, comments, blank lines and `\r\n` line ends; and a part boundary
+    /// always falls on an entity's first line (a split inside a polygon or a view would fail
+    /// to read, and the comparison with it).
+    #[test]
+    fn reading_in_parts_builds_the_scene_of_one_pass() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/spd");
+        let mut texts: Vec<String> = [
+            "balls-s1.nff",
+            "balls-s2.nff",
+            "jacks-s2.nff",
+            "rings-s1.nff",
+        ]
+        .iter()
+        .map(|name| std::fs::read_to_string(dir.join(name)).expect("a committed scene"))
+        .collect();
+        let mut mixed = String::from("# every entity\r\nl 0 10 0\r\n\r\n");
+        for k in 0..40 {
+            if k % 7 == 0 {
+                let c = f64::from(k) / 40.0;
+                mixed.push_str(&format!("f {c} {c} 1 0.5 0.5 3 0 1\r\n"));
+            }
+            if k % 11 == 5 {
+                mixed.push_str(&format!("l {k} 5 -3\r\nl 1 {k} 2 0.5 0.5 0.5\r\n"));
+            }
+            if k == 23 {
+                mixed.push_str("b 0.1 0.2 0.3\r\nv\r\nfrom 0 1 -9\r\nat 0 0 0\r\nup 0 1 0\r\n");
+                mixed.push_str("angle 40\r\nhither 0.01\r\nresolution 64 48\r\n");
+            }
+            let x = f64::from(k);
+            mixed.push_str(&format!("s {x} 0 0 0.4 # sphere {k}\r\n"));
+            mixed.push_str(&format!("p 3\r\n{x} 1 0\r\n{x} 2 0\r\n{} 1 0\r\n", x + 0.5));
+            mixed.push_str(&format!(
+                "pp 3\r\n{x} 3 0 0 0 1\r\n{x} 4 0 0 0 1\r\n{} 3 0 0 0 1\r\n",
+                x + 0.5
+            ));
+            mixed.push_str(&format!("c\r\n{x} 5 0 0.2\r\n{x} 6 0 0.1\r\n"));
+        }
+        texts.push(mixed);
+        for (t, text) in texts.iter().enumerate() {
+            let file = Path::new("t.nff");
+            let whole = parse_nff_in(text, file, 1).expect("a valid scene");
+            for parts in 2..=9 {
+                let starts = part_starts(text, parts);
+                assert!(starts.len() > 1, "text {t}: {parts} parts made one");
+                for &(at, lines) in &starts[1..] {
+                    let word = comment_free(text_lines(&text[at..]).next().unwrap_or(""))
+                        .split_ascii_whitespace()
+                        .next();
+                    assert!(word.is_some_and(is_entity), "text {t}: a part at byte {at}");
+                    assert_eq!(lines as usize, text_lines(&text[..at]).count(), "text {t}");
+                }
+                let split = parse_nff_in(text, file, parts).expect("a valid scene in parts");
+                assert!(*split == *whole, "text {t} in {parts} parts");
+            }
+        }
+    }
+
+    /// Errors do not depend on the split: an error in a later part, one that the last
+    /// step's checks find (a degenerate camera, at its `v`), and a polygon missing a vertex
+    /// line (which a part would see as a different error), each named at the same place as
+    /// in one pass.
+    #[test]
+    fn errors_read_in_parts_are_the_errors_of_one_pass() {
+        let spheres: String = (0..200).map(|k| format!("s {k} 0 0 0.5\n")).collect();
+        for bad in [
+            "s 1 2 zero 1\n",
+            "v\nfrom 0 0 0\nat 0 0 0\nup 0 1 0\nangle 40\nhither 0.01\nresolution 8 8\n",
+            "p 3\n0 0 0\n1 0 0\n",
+            "f 1 1 1 0.5 0.5 3 0.5 -1\n",
+        ] {
+            let text = format!("{spheres}{bad}{spheres}");
+            let file = Path::new("e.nff");
+            let whole = parse_nff_in(&text, file, 1)
+                .expect_err("an invalid scene")
+                .to_string();
+            for parts in 2..=5 {
+                let split = parse_nff_in(&text, file, parts)
+                    .expect_err("invalid")
+                    .to_string();
+                assert_eq!(split, whole, "{bad:?} in {parts} parts");
+            }
+        }
     }
 
     #[test]
