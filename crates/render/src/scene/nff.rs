@@ -147,6 +147,9 @@ fn parse_nff_in(text: &str, file: &Path, parts: usize) -> Result<ValidScene, Sce
                 let end = starts.get(k + 1).map_or(text.len(), |&(next, _)| next);
                 let part = &text[at..end];
                 let capacity = if k == 0 { whole } else { object_capacity(part) };
+                // A name of its own per part: every span takes a reference, and two threads
+                // counting references on one `Arc` fought over its cache line.
+                let file: Arc<Path> = Arc::from(&*file);
                 parse_part(part, first_line, &file, capacity)
             })
             .collect()
