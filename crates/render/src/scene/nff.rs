@@ -118,8 +118,9 @@ pub fn parse_nff(text: &str, file: &Path) -> Result<ValidScene, SceneError> {
 }
 
 /// Texts from this size on are read in parts, one a thread of the current rayon pool: the
-/// 2.7 MB `balls-s5.nff` took 25 ms on one thread (`docs/speed.md`, twentieth session), and
-/// below a few hundred kilobytes a part would cost more to start than it saves.
+/// 10.7 MB of `sombrero-s4.nff` took about 85 ms on one thread and 60–75 ms on two
+/// (`docs/speed.md`, twentieth session), and below a few hundred kilobytes a part would cost
+/// more to start than it saves.
 const PARALLEL_MIN_BYTES: usize = 1 << 18;
 
 /// [`parse_nff`] reading `text` in up to `parts` parts side by side (one part: one pass).
@@ -209,9 +210,9 @@ const PLACEHOLDER: ShapeKind = ShapeKind::Sphere {
     radius: 1.0,
 };
 
-/// The scene of the parts `read`, in order: their objects and spans in `shared` (the parts'
-/// shares, written in place) or, read in one pass, in the part's own arrays; then the
-/// scene-level checks, at the parts' spans.
+/// The scene of the parts `read`, in order: their objects and spans in the two arrays given
+/// (the parts' shares, written in place) or, read in one pass, in the part's own arrays; then
+/// the scene-level checks, at the parts' spans.
 fn merge(
     text: &str,
     file: &Arc<Path>,
