@@ -20,6 +20,7 @@ use std::time::{Duration, Instant};
 
 use glam::DVec3;
 use rayon::prelude::*;
+use smallvec::SmallVec;
 
 use crate::geometry::{Bounds3, Bounds4, Ray, SlabRay};
 
@@ -807,8 +808,8 @@ fn write_nodes(
         order: opened.orders(),
         used: (1u8 << slots.len()) - 1,
     };
-    // Each inner child's share of `rest`, in lane order.
-    let mut tasks = Vec::with_capacity(WIDTH);
+    // Each inner child's share of `rest`, in lane order (on the stack: this runs once a node).
+    let mut tasks: SmallVec<[_; WIDTH]> = SmallVec::new();
     let mut rest = rest;
     let mut next = base + 1;
     for (lane, &s) in slots.iter().enumerate() {
@@ -829,6 +830,7 @@ fn write_nodes(
     }
     let below = if collapse_in_parallel(span) {
         tasks
+            .into_vec()
             .into_par_iter()
             .map(|(s, span, at, share)| write_nodes(binary, s, span, at, share, sizes))
             .max()
