@@ -258,6 +258,12 @@ impl<F: ImplicitFn> Implicit<F> {
         &self.f
     }
 
+    /// The box the surface is traced in (the shape's own, tightened by the user's), `None`
+    /// when unbounded; [`Surface::bounds`] without the copy.
+    pub(crate) fn bounds_ref(&self) -> Option<&Bounds3> {
+        self.bounds.as_ref()
+    }
+
     /// True when the rounded restriction in `coeffs` has a lower degree than the exact one
     /// may have along `d` (its top coefficients rounded, underflowed or cancelled to zero).
     /// The value slack then certifies nothing: `poly` reads a Bernstein coefficient of the

@@ -8,6 +8,8 @@
 //! Normal = (0,0,1)
 //! ```
 
+use std::sync::OnceLock;
+
 use glam::{DVec2, DVec3};
 
 use super::SurfaceKind;
@@ -19,10 +21,16 @@ use crate::trivariate::{Eval3, Poly3, RestrictScratch};
 #[derive(Clone, Debug)]
 pub struct Plane {
     origin: DVec3,
+    /// The unit normal `n`.
     normal: DVec3,
-    u_axis: DVec3,
-    v_axis: DVec3,
-    poly: Poly3,
+    /// `F`'s constant term, `−n·origin`.
+    constant: f64,
+    /// `F` as a [`Poly3`], built on first use, as the sphere's: the plane's restriction,
+    /// gradient and texture axes are computed from `n` and the constant, and a polynomial per
+    /// polygon was a fifth of the memory of a scene of triangles (130 050 of them, 96 bytes
+    /// and an allocation each; `paper-notes/bvh.md`, twenty-first session). `--isolation exact`
+    /// and the tests ask.
+    poly: OnceLock<Poly3>,
     kind: SurfaceKind,
 }
 
@@ -37,26 +45,38 @@ impl Plane {
     /// The same, reported under another kind (polygons and triangles use a plane).
     pub(crate) fn with_kind(origin: DVec3, normal: DVec3, kind: SurfaceKind) -> Self {
         let n = crate::geometry::unit(normal).unwrap_or(DVec3::NAN);
-        // Texture axes: Stam's textured plane is parallel to z = 0 and indexes the texture by
-        // x and y (Annexe B `ColTexture`); other planes get any orthonormal pair.
-        let (u_axis, v_axis) = if n.x == 0.0 && n.y == 0.0 {
-            (DVec3::X, DVec3::Y)
-        } else {
-            n.any_orthonormal_pair()
-        };
-        let poly = Poly3::from_terms([
-            (n.x, [1, 0, 0]),
-            (n.y, [0, 1, 0]),
-            (n.z, [0, 0, 1]),
-            (-n.dot(origin), [0, 0, 0]),
-        ]);
         Plane {
             origin,
             normal: n,
-            u_axis,
-            v_axis,
-            poly,
+            constant: -n.dot(origin),
+            poly: OnceLock::new(),
             kind,
+        }
+    }
+
+    /// `F`'s terms in [`Poly3`]'s order — the constant, then `z`, `y`, `x` (exponents
+    /// ascending) — as `(coefficient, variable)` pairs (`None`: the constant), the zero ones
+    /// dropped, as [`Poly3::from_terms`] stores them.
+    fn terms(&self) -> impl Iterator<Item = (f64, Option<usize>)> {
+        let n = self.normal;
+        [
+            (self.constant, None),
+            (n.z, Some(2)),
+            (n.y, Some(1)),
+            (n.x, Some(0)),
+        ]
+        .into_iter()
+        .filter(|&(c, _)| c != 0.0)
+    }
+
+    /// The texture axes: Stam's textured plane is parallel to z = 0 and indexes the texture by
+    /// x and y (Annexe B `ColTexture`); other planes get any orthonormal pair.
+    fn texture_axes(&self) -> (DVec3, DVec3) {
+        let n = self.normal;
+        if n.x == 0.0 && n.y == 0.0 {
+            (DVec3::X, DVec3::Y)
+        } else {
+            n.any_orthonormal_pair()
         }
     }
 
@@ -83,7 +103,17 @@ impl ImplicitFn for Plane {
     }
 
     fn poly(&self) -> &Poly3 {
-        &self.poly
+        self.poly.get_or_init(|| {
+            let exps = |k: Option<usize>| match k {
+                None => [0, 0, 0],
+                Some(k) => std::array::from_fn(|i| u32::from(i == k)),
+            };
+            Poly3::from_terms(self.terms().map(|(c, k)| (c, exps(k))))
+        })
+    }
+
+    fn degree(&self) -> u32 {
+        1
     }
 
     /// `n·(p − origin)` is negative exactly in the half-space behind the plane.
@@ -103,11 +133,12 @@ impl ImplicitFn for Plane {
 
     fn uv(&self, p: DVec3) -> Option<DVec2> {
         let v = p - self.origin;
-        Some(DVec2::new(v.dot(self.u_axis), v.dot(self.v_axis)))
+        let (u_axis, v_axis) = self.texture_axes();
+        Some(DVec2::new(v.dot(u_axis), v.dot(v_axis)))
     }
 
-    /// [`Poly3::eval_grad`] of the stored polynomial without its power tables: the terms in
-    /// their stored order (constant, `z`, `y`, `x`, the zero ones dropped), each adding
+    /// [`Poly3::eval_grad`] of the plane's polynomial without building it or its power tables:
+    /// the terms in their stored order (constant, `z`, `y`, `x`, the zero ones dropped), each adding
     /// `c·p_k` to `F`, `|c|·|p_k|` to its scale and `c`, `|c|` to the gradient's component —
     /// the generic evaluation's products with their factors `1` left out (multiplying by 1
     /// is exact), summed in the same order, so the same values (test
@@ -116,9 +147,8 @@ impl ImplicitFn for Plane {
     /// polygon or triangle (`paper-notes/bvh.md` §3, eighth pass).
     fn eval_grad(&self, p: DVec3) -> Eval3 {
         let mut out = Eval3::default();
-        for t in self.poly.terms() {
-            let c = t.coeff;
-            match t.exps.iter().position(|&e| e == 1) {
+        for (c, k) in self.terms() {
+            match k {
                 Some(k) => {
                     out.f += c * p[k];
                     out.f_abs += c.abs() * p[k].abs();
@@ -140,6 +170,41 @@ mod tests {
     use rand::{Rng, SeedableRng};
 
     use super::*;
+
+    /// The polynomial built on demand, and the texture axes computed on demand, are those the
+    /// plane stored when it built them at construction (before the twenty-first session): the
+    /// `f64` terms of `n·p − n·origin`, zeros dropped, and Stam's axes for a plane parallel to
+    /// z = 0, any orthonormal pair otherwise. Fails if a term, its order or an axis changes.
+    #[test]
+    fn the_plane_built_on_demand_is_the_former_one() {
+        let cases = [
+            (DVec3::new(1.5, -2.0, 0.25), DVec3::new(0.0, 0.0, 2.0)),
+            (DVec3::new(0.0, 3.0, 0.0), DVec3::new(1.0, -2.0, 0.5)),
+            (DVec3::ZERO, DVec3::new(0.0, -1.0, 0.0)),
+            (DVec3::new(1e6, -1e-6, 7.0), DVec3::new(-3.0, 0.0, 4.0)),
+        ];
+        for (origin, normal) in cases {
+            let plane = Plane::new(origin, normal);
+            let n = crate::geometry::unit(normal).unwrap();
+            let former = Poly3::from_terms([
+                (n.x, [1, 0, 0]),
+                (n.y, [0, 1, 0]),
+                (n.z, [0, 0, 1]),
+                (-n.dot(origin), [0, 0, 0]),
+            ]);
+            assert_eq!(plane.poly(), &former, "plane {origin} n {normal}");
+            assert_eq!(plane.degree(), former.degree(), "plane {origin} n {normal}");
+            let (u, v) = if n.x == 0.0 && n.y == 0.0 {
+                (DVec3::X, DVec3::Y)
+            } else {
+                n.any_orthonormal_pair()
+            };
+            let p = origin + u * 2.5 - v * 0.75;
+            let uv = plane.uv(p).unwrap();
+            let want = DVec2::new((p - origin).dot(u), (p - origin).dot(v));
+            assert_eq!(uv, want, "plane {origin} n {normal}");
+        }
+    }
 
     #[test]
     fn eval_grad_is_the_generic_evaluation() {

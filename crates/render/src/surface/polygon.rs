@@ -20,6 +20,7 @@
 use std::ops::Range;
 
 use glam::{DVec2, DVec3};
+use smallvec::SmallVec;
 
 use super::implicit::{Implicit, clip, search_start};
 use super::{Hit, Plane, Surface, SurfaceGeometry, SurfaceKind};
@@ -30,11 +31,11 @@ use crate::workspace::Workspace;
 #[derive(Debug)]
 pub struct Polygon {
     plane: Implicit<Plane>,
-    /// Vertices projected on the two coordinates kept by the dominant projection.
-    projected: Vec<DVec2>,
+    /// Vertices projected on the two coordinates kept by the dominant projection; a
+    /// triangle's in the polygon itself, not in an allocation of their own.
+    projected: SmallVec<[DVec2; 3]>,
     /// The dropped coordinate (the normal's largest component).
     drop_axis: usize,
-    bounds: Bounds3,
 }
 
 impl Polygon {
@@ -70,7 +71,6 @@ impl Polygon {
             plane,
             projected: vertices.iter().map(|&v| keep(v)).collect(),
             drop_axis,
-            bounds,
         })
     }
 
@@ -85,7 +85,7 @@ impl Polygon {
     ) -> Option<(f64, DVec3)> {
         let range_start = t_range.start;
         let seg = clip(
-            Some(&self.bounds),
+            self.plane.bounds_ref(),
             ray,
             t_range.clone(),
             ws,
@@ -116,10 +116,11 @@ impl Polygon {
     fn contains(&self, p: DVec3) -> bool {
         let q = self.project(p);
         let mut inside = false;
-        let n = self.projected.len();
+        let pts: &[DVec2] = &self.projected;
+        let n = pts.len();
         for i in 0..n {
-            let a = self.projected[i];
-            let b = self.projected[(i + 1) % n];
+            let a = pts[i];
+            let b = pts[(i + 1) % n];
             if (a.y > q.y) != (b.y > q.y) {
                 let x = a.x + (q.y - a.y) * (b.x - a.x) / (b.y - a.y);
                 if q.x < x {
@@ -137,7 +138,7 @@ impl Surface for Polygon {
     }
 
     fn bounds(&self) -> Option<Bounds3> {
-        Some(self.bounds)
+        self.plane.bounds()
     }
 
     fn intersect(&self, ray: &Ray, t_range: Range<f64>, ws: &mut Workspace) -> Option<Hit> {
