@@ -863,7 +863,14 @@ fn sah_split(
     for it in items.iter() {
         let b = bin_of(it);
         counts[b] += 1;
-        boxes[b] = grow(&boxes[b], &it.bounds);
+        // `f64::min`/`max` here, not `grow`'s `<` selects: a select written back to the
+        // array it read became a masked store (`vmaskmovpd`), slow on this machine's AMD
+        // cores and not forwarded to the next item's load of the same bin — a quarter of
+        // `sah_split`'s samples (`paper-notes/bvh.md`, twenty-first session). Build boxes hold
+        // no NaN, so the union is the same (up to the sign of a zero corner, as in `grow`).
+        let bin = &mut boxes[b];
+        bin.min = bin.min.min(it.bounds.min);
+        bin.max = bin.max.max(it.bounds.max);
     }
     // Only the non-empty bins are swept: a split between two empty bins has the same items
     // on each side, so the same cost, as the split just after the last non-empty bin below
