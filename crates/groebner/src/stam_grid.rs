@@ -170,7 +170,12 @@ impl DensePoly {
                     // `&`, not `&&`: no branch, so that the loop vectorises.
                     let zero = (*c != 0.0) & (c.abs() <= ZERO_ERR_FACTOR * *d);
                     *d += if zero { c.abs() } else { 0.0 };
-                    *c = if zero { 0.0 } else { *c };
+                    // Cleared by a product and stored whole: `if zero { 0.0 } else { *c }`
+                    // became a masked store (`vmaskmovpd`), slow on AMD cores — 45 % of this
+                    // function's samples on the teapot (`paper-notes/bvh.md`, twenty-first
+                    // session). `+ 0.0` turns the product's `−0.0` into the `+0.0` the select
+                    // wrote; a kept `c` is unchanged (a kept `−0.0` becomes `+0.0`, equal).
+                    *c = *c * f64::from(u8::from(!zero)) + 0.0;
                 }
             }
         }
