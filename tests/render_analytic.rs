@@ -40,12 +40,13 @@ fn torus_scene() -> Scene {
         major: 2.0,
         minor: 1.0,
     });
-    torus.material.illumination = Illumination::Specular;
-    torus.material.cs = DVec3::new(0.8, 0.3, 0.2);
-    torus.material.ka = 0.1;
-    torus.material.kd = 0.7;
-    torus.material.ks = 0.5;
-    torus.material.n = 40.0;
+    let material = std::sync::Arc::make_mut(&mut torus.material);
+    material.illumination = Illumination::Specular;
+    material.cs = DVec3::new(0.8, 0.3, 0.2);
+    material.ka = 0.1;
+    material.kd = 0.7;
+    material.ks = 0.5;
+    material.n = 40.0;
     scene.objects.push(torus);
     scene
 }

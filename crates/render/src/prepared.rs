@@ -99,8 +99,8 @@ impl PreparedScene {
         let mut materials: Vec<Material> = Vec::new();
         let mut material_of = Vec::with_capacity(scene.objects.len());
         for (index, object) in scene.objects.iter().enumerate() {
-            if materials.last() != Some(&object.material) {
-                materials.push(object.material.clone());
+            if materials.last() != Some(&*object.material) {
+                materials.push(Material::clone(&object.material));
             }
             material_of.push(u32::try_from(materials.len() - 1).map_err(|_| {
                 SceneInvalid::Object {
@@ -291,7 +291,7 @@ mod tests {
             (3.0, Material::default()),
         ] {
             let mut object = Object::new(sphere(x));
-            object.material = material;
+            object.material = material.into();
             scene.objects.push(object);
         }
         let valid = ValidScene::new(scene.clone()).unwrap();
@@ -303,7 +303,7 @@ mod tests {
         );
         assert_eq!(prepared.material_of, vec![0, 0, 1, 2]);
         for (i, object) in scene.objects.iter().enumerate() {
-            assert_eq!(prepared.material(i), &object.material, "object {i}");
+            assert_eq!(prepared.material(i), &*object.material, "object {i}");
         }
     }
 

@@ -8,6 +8,7 @@
 //! at the key or value it is about.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use glam::DVec3;
 
@@ -1040,7 +1041,7 @@ fn build_object(
     }
     let object = Object {
         shape,
-        material,
+        material: Arc::new(material),
         bounding,
         transform,
     };

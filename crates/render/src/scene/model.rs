@@ -19,6 +19,7 @@
 //! ```
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use glam::{DAffine3, DMat3, DVec3};
 
@@ -182,8 +183,10 @@ impl Default for Viewport {
 pub struct Object {
     /// The geometry, in the object's own coordinates.
     pub shape: ShapeKind,
-    /// The illumination parameters.
-    pub material: Material,
+    /// The illumination parameters, shared by reference: the objects an NFF `f` line lights
+    /// hold one material, not a 120-byte copy each (a third of a parsed object; issue 12,
+    /// `paper-notes/nff.md` §1).
+    pub material: Arc<Material>,
     /// An optional bounding volume, in the same coordinates as the shape parameters (before
     /// [`Object::transform`]). The tracer always computes a box for bounded shapes itself;
     /// a user box only tightens it (and is required for no shape).
@@ -198,7 +201,7 @@ impl Object {
     pub fn new(shape: ShapeKind) -> Self {
         Object {
             shape,
-            material: Material::default(),
+            material: Arc::default(),
             bounding: BoundingVolume::None,
             transform: ObjectTransform::default(),
         }
@@ -1022,7 +1025,7 @@ mod tests {
             "the shape's own check is the one left out"
         );
         scene.objects.pop();
-        scene.objects[0].material.illumination = Illumination::Texture;
+        Arc::make_mut(&mut scene.objects[0].material).illumination = Illumination::Texture;
         assert!(
             scene.validate().is_err(),
             "TEXTURE without a texture is refused"

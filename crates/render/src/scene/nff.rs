@@ -20,8 +20,8 @@ use smallvec::SmallVec;
 use super::error::{ErrorKind, SceneError, Span};
 use super::lexer::{TextLines, end_position, text_lines};
 use super::model::{
-    CameraSpec, Illumination, InvalidModel, Light, LookAtCamera, Material, Object, Rgb, Scene,
-    ShapeKind, Viewport,
+    BoundingVolume, CameraSpec, Illumination, InvalidModel, Light, LookAtCamera, Material, Object,
+    ObjectTransform, Rgb, Scene, ShapeKind, Viewport,
 };
 use super::valid_scene::{SceneSpans, ValidScene};
 
@@ -229,7 +229,7 @@ fn merge(
         objects: object_spans,
         ..SceneSpans::default()
     };
-    let mut material = Material::default();
+    let mut material = Arc::new(Material::default());
     let mut uncoloured = Vec::new();
     let mut offset = 0;
     for part in read {
@@ -352,7 +352,7 @@ struct Part {
     /// part begins.
     inherited: usize,
     /// The material in force at its end, when it has an `f`.
-    material: Option<Material>,
+    material: Option<Arc<Material>>,
     lights: Vec<Light>,
     light_spans: Vec<Span>,
     /// Its lights without a colour (indices into `lights`).
@@ -436,7 +436,7 @@ fn parse_part(
         background: None,
     };
     // Until the part's first `f`, objects take a placeholder, replaced when the parts merge.
-    let mut material = Material::default();
+    let mut material = Arc::new(Material::default());
     while let Some(mut line) = r.next_line() {
         let Some((keyword, at)) = line.word() else {
             continue; // unreachable: `next_line` skips lines without words
@@ -489,7 +489,7 @@ fn parse_part(
                     }
                     ior = 1.0;
                 }
-                material = nff_material(color, kd, ks, shine, t, ior);
+                material = Arc::new(nff_material(color, kd, ks, shine, t, ior));
                 if part.material.is_none() {
                     part.inherited = objects.len();
                 }
@@ -600,7 +600,7 @@ fn object_capacity(text: &str) -> usize {
 fn push(
     objects: &mut Objects<'_>,
     shape: ShapeKind,
-    material: &Material,
+    material: &Arc<Material>,
     span: Span,
 ) -> Result<(), SceneError> {
     // The name is spelled only for an error: lower-casing it for every object was a tenth of
@@ -617,9 +617,14 @@ fn push(
         SceneError::at(&span, ErrorKind::InvalidValue { key: name, reason })
     };
     shape.validate().map_err(located)?;
-    let mut object = Object::new(shape);
+    // Built whole: `Object::new` would allocate a default material only to drop it.
+    let object = Object {
+        shape,
+        material: material.clone(),
+        bounding: BoundingVolume::None,
+        transform: ObjectTransform::default(),
+    };
     object.placement().map_err(located)?;
-    object.material = material.clone();
     objects.push(object, span).map_err(|span| {
         // More objects than counted: a malformed text (the caller reads it in one pass).
         SceneError::at(
