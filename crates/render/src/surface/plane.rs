@@ -137,11 +137,11 @@ impl ImplicitFn for Plane {
         Some(DVec2::new(v.dot(u_axis), v.dot(v_axis)))
     }
 
-    /// [`Poly3::eval_grad`] of the plane's polynomial without building it or its power tables:
-    /// the terms in their stored order (constant, `z`, `y`, `x`, the zero ones dropped), each adding
-    /// `c·p_k` to `F`, `|c|·|p_k|` to its scale and `c`, `|c|` to the gradient's component —
-    /// the generic evaluation's products with their factors `1` left out (multiplying by 1
-    /// is exact), summed in the same order, so the same values (test
+    /// [`Poly3::eval_grad`] of the plane's polynomial without building it or its power
+    /// tables: the terms in their stored order (constant, `z`, `y`, `x`, the zero ones
+    /// dropped), each adding `c·p_k` to `F`, `|c|·|p_k|` to its scale and `c`, `|c|` to the
+    /// gradient's component — the generic evaluation's products with their factors `1` left
+    /// out (multiplying by 1 is exact), summed in the same order, so the same values (test
     /// `eval_grad_is_the_generic_evaluation`): the normal and the hit point's error bound are
     /// unchanged. The generic one zeroes and fills six power tables for every shaded hit of a
     /// polygon or triangle (`paper-notes/bvh.md` §3, eighth pass).

@@ -116,6 +116,9 @@ impl Polygon {
     fn contains(&self, p: DVec3) -> bool {
         let q = self.project(p);
         let mut inside = false;
+        // One slice for the loop: indexing the `SmallVec` asks where its data lives at every
+        // access, and gears' many-sided polygons traced 5.6 % slower (`paper-notes/bvh.md`,
+        // twenty-first session).
         let pts: &[DVec2] = &self.projected;
         let n = pts.len();
         for i in 0..n {
