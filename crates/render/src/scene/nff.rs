@@ -157,7 +157,13 @@ fn parse_nff_in(text: &str, file: &Path, parts: usize) -> Result<ValidScene, Sce
     let files: Vec<Arc<Path>> = texts.iter().map(|_| Arc::from(&*file)).collect();
     let total = counts.iter().sum();
     let mut objects = Vec::with_capacity(total);
-    objects.par_extend(rayon::iter::repeat_n(Object::new(PLACEHOLDER), total));
+    // A placeholder of its own (and so a material of its own) for each job that fills the
+    // array: clones of one placeholder had both threads counting references on one material's
+    // cache line, when filled and again when each part overwrote its slots.
+    objects.par_extend((0..total).into_par_iter().map_init(
+        || Object::new(PLACEHOLDER),
+        |placeholder, _| placeholder.clone(),
+    ));
     let mut spans = Vec::with_capacity(total);
     for (f, &count) in files.iter().zip(&counts) {
         let placeholder = Span {
