@@ -866,9 +866,6 @@ impl<'a> Line<'a> {
 mod tests {
     use super::*;
 
-    /// Every decimal gets the bits `str::parse::<f64>` gives it, and what it refuses is
-    /// refused: random decimals of 1–20 digits with the point anywhere (or none), either
-    /// sign, with and without an exponent, and the edge cases.
     /// The objects' arrays are reserved once from [`object_capacity`], which must bound the
     /// objects whatever the line ends: one object a line, the last without a line end, `\r`
     /// alone, `\r\n`, and entities spanning several lines.
@@ -889,6 +886,40 @@ mod tests {
             );
         }
         assert_eq!(object_capacity("s 0 0 0 1\ns 1 0 0 1"), 2);
+    }
+
+    /// The objects an `f` line lights share its one material, whether the text is read in one
+    /// pass or in parts (objects before a part's first `f` included), and the objects of two
+    /// `f` lines do not: a copy per object was a third of a parsed object (balls-s5's peak
+    /// memory 64.4 against 57.2 MB, `paper-notes/nff.md` §1). Fails if the reader goes back to
+    /// copying the material into each object.
+    #[test]
+    fn the_objects_an_f_line_lights_share_its_material() {
+        let mut text = String::from("l 0 10 0\nf 1 0 0 1 0 1 0 1\n");
+        for k in 0..200 {
+            text.push_str(&format!("s {k} 0 0 0.4\n"));
+        }
+        text.push_str("f 0 1 0 1 0 1 0 1\n");
+        for k in 0..200 {
+            text.push_str(&format!("p 3\n{k} 1 0\n{k} 2 0\n{k}.5 1 0\n"));
+        }
+        for parts in [1, 2, 3, 5] {
+            let scene = parse_nff_in(&text, Path::new("t.nff"), parts).expect("a valid scene");
+            let objects = &scene.objects;
+            assert_eq!(objects.len(), 400, "{parts} parts");
+            let (red, green) = (&objects[0].material, &objects[200].material);
+            assert!(
+                !Arc::ptr_eq(red, green),
+                "{parts} parts: two f lines, two materials"
+            );
+            for (i, object) in objects.iter().enumerate() {
+                let own = if i < 200 { red } else { green };
+                assert!(
+                    Arc::ptr_eq(&object.material, own),
+                    "{parts} parts: object {i} holds a material of its own"
+                );
+            }
+        }
     }
 
     /// Reading a text in 2 to 9 parts builds the scene a single pass builds — objects with
@@ -1046,6 +1077,9 @@ mod tests {
         );
     }
 
+    /// Every decimal gets the bits `str::parse::<f64>` gives it, and what it refuses is
+    /// refused: random decimals of 1–20 digits with the point anywhere (or none), either
+    /// sign, with and without an exponent, and the edge cases.
     #[test]
     fn numbers_are_read_as_str_parse_reads_them() {
         use rand::{Rng, SeedableRng};
