@@ -67,6 +67,21 @@ const MAX_ABERTH_SWEEPS: u32 = 80;
 /// ≈ 0.1 off, with `p'` good to ~10 %).
 const MAX_POLISH_STEPS: u32 = 8;
 
+/// Steps of the real polish ([`polish_real`]) before an approximation whose step no longer
+/// shrinks by [`POLISH_CONTRACTION`] is given up as wandering. A real root's steps shrink from
+/// the first or second on (quadratically near the root; from Wilkinson-20's starts ≈ 0.1 off,
+/// linearly but by more than that factor). A real approximation standing for one of a
+/// near-real conjugate pair has no real root to converge to and used to wander for all
+/// [`MAX_POLISH_STEPS`] before [`unreal_near_pairs`] polished it as a complex root. Measured
+/// (`paper-notes/isolation.md`, "Wandering approximations"): planted degree 40 and 80 and
+/// Chebyshev T₁₆₀ −7 to −8 % of their instructions; giving up from the second step on cost
+/// Wilkinson-20 31 %.
+const POLISH_WANDERING_AFTER: u32 = 2;
+
+/// The factor by which each step of the real polish must shrink from the third on
+/// ([`POLISH_WANDERING_AFTER`]); 0.5 cost Wilkinson-20 as much as giving up earlier.
+const POLISH_CONTRACTION: f64 = 0.9;
+
 /// Most Aberth sweeps of the complex polish of the near-real pairs ([`polish_complex`]),
 /// with `p` and `p'` in twice the working precision from the approximations the `f64`
 /// iteration left. Why 16, measured (`paper-notes/isolation.md`, "Near-real pairs: the
@@ -249,6 +264,8 @@ struct Scratch {
     before_real: Vec<C>,
     /// Whether `zᵢ` went back to its complex value ([`unreal_near_pairs`]).
     restored: Vec<bool>,
+    /// The length of `zᵢ`'s last step in [`polish_real`].
+    step: Vec<f64>,
 }
 
 impl Scratch {
@@ -279,6 +296,7 @@ impl Scratch {
         self.before_real
             .reserve(m.saturating_sub(self.before_real.len()));
         self.restored.reserve(m.saturating_sub(self.restored.len()));
+        self.step.reserve(m.saturating_sub(self.step.len()));
     }
 }
 
@@ -678,16 +696,22 @@ fn approximate(c: &[f64], s: &mut Scratch) -> bool {
 /// bound `|v| + err` on `|p(xᵢ)|` is kept in `s.p_bound` for the certificate, which would
 /// otherwise evaluate `p` again at the same point (the compensated scheme, for values that
 /// small).
-fn polish_real(c: &[f64], s: &mut Scratch) {
+///
+/// Returns the number of evaluations made (the tests count them).
+fn polish_real(c: &[f64], s: &mut Scratch) -> usize {
     let n = s.z.len();
+    let mut evaluations = 0;
     let mut far = s.z.iter().any(|&z| is_far(z));
-    for _ in 0..MAX_POLISH_STEPS {
+    s.step.clear();
+    s.step.resize(n, f64::INFINITY);
+    for sweep in 0..MAX_POLISH_STEPS {
         let mut moving = false;
         for i in 0..n {
             if s.done[i] {
                 continue;
             }
             let x = s.z[i].re;
+            evaluations += 1;
             let (v, err, d) = comp_horner_bounded_and_derivative(c, x);
             if v.abs() <= err && err.is_finite() {
                 s.done[i] = true;
@@ -716,6 +740,14 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
                 }
                 continue;
             }
+            // Given up when its steps stop shrinking (`POLISH_WANDERING_AFTER`): its disc
+            // stays unisolated, and `unreal_near_pairs` takes it up as a complex root.
+            let step = (next - x).abs();
+            if sweep >= POLISH_WANDERING_AFTER && step > POLISH_CONTRACTION * s.step[i] {
+                s.done[i] = true;
+                continue;
+            }
+            s.step[i] = step;
             s.z[i] = C::new(next, 0.0);
             far |= next.abs() > FAR_COORDINATE;
             moving = true;
@@ -724,6 +756,7 @@ fn polish_real(c: &[f64], s: &mut Scratch) {
             break;
         }
     }
+    evaluations
 }
 
 /// For the polish where `p(x)` or `p'(x)` overflows: the compensated value of the rescaled
@@ -2079,6 +2112,36 @@ mod tests {
         for seed in [1u64, 5, 11] {
             let (p, _) = planted_of_degree(seed, 40..=40);
             assert_decided_by_discs(&check(&p, -0.5, 1.5), &format!("seed {seed}"));
+        }
+    }
+
+    /// The real polish gives up an approximation whose steps stop shrinking
+    /// ([`POLISH_WANDERING_AFTER`]): planted degree 40 makes about 34 of its 40 approximations
+    /// real where the stored polynomial has near-real pairs, and their polish, which cannot
+    /// converge, took all [`MAX_POLISH_STEPS`] — 291 to 299 evaluations a query before the
+    /// rule. The query's answer is checked by `planted_degree_forty_is_decided_by_the_discs`.
+    #[test]
+    fn the_real_polish_gives_up_wandering_approximations() {
+        for seed in [1u64, 5, 11] {
+            let (p, _) = planted_of_degree(seed, 40..=40);
+            let c = p.coeffs();
+            let mut s = Scratch::default();
+            s.reserve(40);
+            assert!(approximate(c, &mut s), "seed {seed}");
+            // The polish again from where `approximate` started it: each approximation as
+            // the `f64` iteration left it, made real where `approximate` made it real.
+            for i in 0..s.z.len() {
+                let before = s.before_real[i];
+                let real = s.z[i].im == 0.0;
+                s.z[i] = if real { C::new(before.re, 0.0) } else { before };
+                s.done[i] = !real;
+                s.p_bound[i] = f64::NAN;
+            }
+            let evaluations = polish_real(c, &mut s);
+            assert!(
+                evaluations < 200,
+                "seed {seed}: {evaluations} evaluations in the real polish"
+            );
         }
     }
 
