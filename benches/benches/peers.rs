@@ -238,13 +238,21 @@ fn report(corpus: &Corpus, solvers: &[Method], flint: bool) {
         corpus.x_tol
     );
     println!(
-        "| solver | time / query | × polycool | wrong | poly: adaptive pieces (re-expanded in f64, of them far clusters) / multiprecision / adaptive refines / exact fallbacks / inclusion discs decided:undecided (undecided parts) |"
+        "| solver | time / query | × polycool | wrong | poly (certified): adaptive pieces (re-expanded in f64, of them far clusters) / multiprecision / adaptive refines / exact fallbacks / inclusion discs decided:undecided (undecided parts); poly's heuristics: queries refused |"
     );
     println!("|---|---|---|---|---|");
     for r in &rows {
         let ratio = base.map_or(String::new(), |b| format!("{:.2}", r.ns / b));
         let st = if r.solver == POLY {
             stats_cell(&r.stats)
+        } else if r.stats.unresolved > 0 {
+            // A heuristic of `poly`'s that says it cannot answer (`RootError::Unresolved`):
+            // its wrong roots are the ones it did not return, and its time is a refusal's.
+            format!(
+                "refused {} of {} queries (`Unresolved`)",
+                r.stats.unresolved,
+                corpus.queries.len()
+            )
         } else {
             String::new()
         };
