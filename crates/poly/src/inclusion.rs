@@ -74,12 +74,12 @@ const MAX_POLISH_STEPS: u32 = 8;
 /// near-real conjugate pair has no real root to converge to and used to wander for all
 /// [`MAX_POLISH_STEPS`] before [`unreal_near_pairs`] polished it as a complex root. Measured
 /// (`paper-notes/isolation.md`, "Wandering approximations"): planted degree 40 and 80 and
-/// Chebyshev T₁₆₀ −7 to −8 % of their instructions; giving up from the second step on cost
-/// Wilkinson-20 31 %.
+/// Chebyshev T₁₆₀ −7 to −8 % of their instructions; giving up from the second step on (a step
+/// longer than the first) cost Wilkinson-20 34 %.
 const POLISH_WANDERING_AFTER: u32 = 2;
 
 /// The factor by which each step of the real polish must shrink from the third on
-/// ([`POLISH_WANDERING_AFTER`]); 0.5 cost Wilkinson-20 as much as giving up earlier.
+/// ([`POLISH_WANDERING_AFTER`]); 0.5 cost Wilkinson-20 31 %, and saved no more elsewhere.
 const POLISH_CONTRACTION: f64 = 0.9;
 
 /// Most Aberth sweeps of the complex polish of the near-real pairs ([`polish_complex`]),
