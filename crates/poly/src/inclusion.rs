@@ -79,7 +79,8 @@ const MAX_POLISH_STEPS: u32 = 8;
 const POLISH_WANDERING_AFTER: u32 = 2;
 
 /// The factor by which each step of the real polish must shrink from the third on
-/// ([`POLISH_WANDERING_AFTER`]); 0.5 cost Wilkinson-20 31 %, and saved no more elsewhere.
+/// ([`POLISH_WANDERING_AFTER`]); 0.5 cost Wilkinson-20 31 % and saved at most 0.5 % more
+/// elsewhere.
 const POLISH_CONTRACTION: f64 = 0.9;
 
 /// Most Aberth sweeps of the complex polish of the near-real pairs ([`polish_complex`]),
