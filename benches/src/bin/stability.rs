@@ -343,10 +343,10 @@ fn markdown(args: &Args, cmd: &str, rows: &[Row], elapsed: Duration) -> String {
     for (m, n) in Method::STABILITY.iter().zip(&names) {
         let what = match m {
             Method::Stam => {
-                "Stam's 1988 `ray2.c` (the seed's algorithm, the baseline): unnormalised `f64` Sturm recurrence, count-driven bisection, bisection on the sign of P; all roots by restarting his smallest-root search after each root"
+                "Stam's 1988 `ray2.c` (the seed's algorithm, the baseline): unnormalised `f64` Sturm recurrence, count-driven bisection, bisection on the sign of P; all roots by restarting his smallest-root search after each root. A sequence the library's honesty checks reject gives no roots, which this suite scores as every root missed"
             }
             Method::SturmF64(_) => {
-                "our `f64` Sturm sequence (remainders normalised, negligible leading terms dropped), bisection isolation, certified-bracket Illinois refinement: a heuristic"
+                "our `f64` Sturm sequence (remainders normalised, negligible leading terms dropped), bisection isolation, certified-bracket Illinois refinement: a heuristic, which refuses (`RootError::Unresolved`) where its checks find the sequence unreliable; this suite scores a refusal as every root missed, so its *m* counts refusals and wrong answers together"
             }
             Method::Bernstein(_) if n.ends_with("bisect") => {
                 "certified: Descartes/Bernstein isolation with rounding-error bounds (exact fallback when a sign is uncertain), bisection refinement"
