@@ -47,6 +47,26 @@ pub fn machine() -> String {
     format!("{cores}-core {}, {model}", std::env::consts::ARCH)
 }
 
+/// The one-minute load average when called (`/proc/loadavg`), for a report to say how busy
+/// the machine was; `None` where the file is missing or unreadable.
+pub fn load_average() -> Option<f64> {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()?
+        .split_whitespace()
+        .next()?
+        .parse()
+        .ok()
+}
+
+/// How busy the machine was when a report started: `"load average 0.7 at the start"`, or
+/// `"load average unknown"`.
+pub fn load_note(load: Option<f64>) -> String {
+    load.map_or_else(
+        || "load average unknown".to_owned(),
+        |l| format!("load average {l:.1} at the start"),
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -56,6 +76,12 @@ mod tests {
         assert_eq!(human_nanos(812.0), "812 ns", "ns");
         assert_eq!(human_nanos(3400.0), "3.400 µs", "µs");
         assert_eq!(human_nanos(2e6), "2 ms", "whole ms");
+    }
+
+    #[test]
+    fn the_load_note_says_what_was_read() {
+        assert_eq!(load_note(Some(0.71)), "load average 0.7 at the start");
+        assert_eq!(load_note(None), "load average unknown");
     }
 
     /// The mean is over every call made until the budget was spent, so mean × calls is the
