@@ -95,19 +95,62 @@ fn prepare(c: &[f64], t_min: f64, t_max: f64, opts: &RootOptions) -> Result<Rang
     Ok(Range::Search { lo, hi })
 }
 
+/// An answer of an all-roots query placed on the line: a root, or an isolating interval.
+trait Placed {
+    /// Its lowest and highest points.
+    fn ends(&self) -> (f64, f64);
+}
+
+impl Placed for f64 {
+    fn ends(&self) -> (f64, f64) {
+        (*self, *self)
+    }
+}
+
+impl Placed for RootInterval<f64> {
+    fn ends(&self) -> (f64, f64) {
+        (self.lo, self.hi)
+    }
+}
+
 /// Every root in `(lo, hi]` of `p = x^k·q` (`q(0) ≠ 0`), appended to `out` in order: those
-/// of `q` below 0 (`side` answers one sub-range), the root 0 itself (`zero`) when it lies in
-/// the range, then those of `q` above 0. One query for the statistics: at most one exact
-/// fallback, though each side may have needed one.
-fn around_zero<V>(
+/// of `q` below 0, the root 0 itself (`zero`) when it lies in the range, then those of `q`
+/// above 0.
+///
+/// First `whole` answers `q` on the whole range in one go — the inclusion discs
+/// ([`inclusion_first`]), which approximate every complex root of `q` whatever the range, so
+/// asking them once per side did their work twice (Chebyshev and Legendre polynomials of odd
+/// degree took 2–2.8× the subdivision's time at degrees 5–11) — and 0 goes in between. If
+/// `whole` declines, or one of its answers reaches 0 (a root of `q` closer to 0 than its
+/// bracket's width, which would not sort), `side` answers each sub-range alone, as before.
+/// One query for the statistics: at most one exact fallback, though each part may have
+/// needed one.
+fn around_zero<V: Placed>(
     q: &Poly<f64>,
     (lo, hi): (f64, f64),
     zero: V,
     stats: &mut RootStats,
     out: &mut Vec<V>,
+    whole: impl FnOnce(&Poly<f64>, f64, f64, &mut RootStats, &mut Vec<V>) -> Result<bool, RootError>,
     mut side: impl FnMut(&Poly<f64>, f64, f64, &mut RootStats, &mut Vec<V>) -> Result<(), RootError>,
 ) -> Result<(), RootError> {
     let fallbacks = stats.exact_fallbacks;
+    let start = out.len();
+    if whole(q, lo, hi, stats, out)? {
+        let answers = &out[start..];
+        if answers.iter().all(|v| {
+            let (a, b) = v.ends();
+            b < 0.0 || a > 0.0
+        }) {
+            if lo < 0.0 && 0.0 <= hi {
+                let at = start + answers.partition_point(|v| v.ends().1 < 0.0);
+                out.insert(at, zero);
+            }
+            stats.exact_fallbacks = stats.exact_fallbacks.min(fallbacks + 1);
+            return Ok(());
+        }
+        out.truncate(start);
+    }
     side(q, lo, hi.min(0.0), stats, out)?;
     if lo < 0.0 && 0.0 <= hi {
         out.push(zero);
@@ -360,12 +403,34 @@ impl Poly<f64> {
         if let Some((k, lo, hi)) = zero_root_split(self, a, b, opts, Slack::NONE)? {
             let zero = RootInterval { lo: 0.0, hi: 0.0 };
             return with_quotient(self, k, |q| {
-                around_zero(q, (lo, hi), zero, stats, out, |q, lo, hi, s, out| {
-                    q.isolate_roots_push(lo, hi, opts, s, out)
-                })
+                around_zero(
+                    q,
+                    (lo, hi),
+                    zero,
+                    stats,
+                    out,
+                    |q, lo, hi, s, out| q.isolate_roots_by_discs(lo, hi, opts, s, out),
+                    |q, lo, hi, s, out| q.isolate_roots_push(lo, hi, opts, s, out),
+                )
             });
         }
-        if inclusion_first(
+        if self.isolate_roots_by_discs(a, b, opts, stats, out)? {
+            return Ok(());
+        }
+        self.isolate_roots_subdivide(a, b, opts, stats, out)
+    }
+
+    /// [`inclusion_first`] for [`Poly::isolate_roots_push`]: `Ok(true)` when the discs
+    /// answered (undecided parts subdivided).
+    fn isolate_roots_by_discs(
+        &self,
+        a: f64,
+        b: f64,
+        opts: &RootOptions,
+        stats: &mut RootStats,
+        out: &mut Vec<RootInterval<f64>>,
+    ) -> Result<bool, RootError> {
+        inclusion_first(
             self,
             a,
             b,
@@ -376,10 +441,7 @@ impl Poly<f64> {
             |r| RootInterval { lo: r, hi: r },
             |lo, hi, s, out| self.isolate_roots_subdivide(lo, hi, opts, s, out),
             out,
-        )? {
-            return Ok(());
-        }
-        self.isolate_roots_subdivide(a, b, opts, stats, out)
+        )
     }
 
     /// The isolating intervals of the roots in `(a, b]` by subdivision (the certified
@@ -523,18 +585,41 @@ impl Poly<f64> {
     ) -> Result<(), RootError> {
         if let Some((k, lo, hi)) = zero_root_split(self, a, b, opts, slack)? {
             return with_quotient(self, k, |q| {
-                around_zero(q, (lo, hi), 0.0, stats, out, |q, lo, hi, s, out| {
-                    q.real_roots_push(lo, hi, opts, slack, s, out)
-                })
+                around_zero(
+                    q,
+                    (lo, hi),
+                    0.0,
+                    stats,
+                    out,
+                    |q, lo, hi, s, out| q.real_roots_by_discs(lo, hi, opts, slack, s, out),
+                    |q, lo, hi, s, out| q.real_roots_push(lo, hi, opts, slack, s, out),
+                )
             });
         }
+        if self.real_roots_by_discs(a, b, opts, slack, stats, out)? {
+            return Ok(());
+        }
+        self.real_roots_subdivide(a, b, opts, slack, stats, out)
+    }
+
+    /// [`inclusion_first`] for [`Poly::real_roots_push`]: `Ok(true)` when the discs answered
+    /// (roots refined, undecided parts subdivided).
+    fn real_roots_by_discs(
+        &self,
+        a: f64,
+        b: f64,
+        opts: &RootOptions,
+        slack: Slack<'_>,
+        stats: &mut RootStats,
+        out: &mut Vec<f64>,
+    ) -> Result<bool, RootError> {
         let refine = |p: &Poly<f64>, b, s: &mut RootStats| {
             refine_certified(Stored::owned(p), b, opts.tolerance(), opts.refine, s)
         };
         let subdivide = |lo, hi, s: &mut RootStats, out: &mut Vec<f64>| {
             self.real_roots_subdivide(lo, hi, opts, slack, s, out)
         };
-        if inclusion_first(
+        inclusion_first(
             self,
             a,
             b,
@@ -545,10 +630,7 @@ impl Poly<f64> {
             |r| r,
             subdivide,
             out,
-        )? {
-            return Ok(());
-        }
-        self.real_roots_subdivide(a, b, opts, slack, stats, out)
+        )
     }
 
     /// The roots in `(a, b]` by subdivision (the certified search, or the method `opts`
@@ -1831,5 +1913,87 @@ mod tests {
             Slack::new(&tiny),
         );
         assert_eq!(got, Ok(0.5), "the root 1/2, pinned by its neighbours");
+    }
+
+    /// Regression (session 22): a polynomial with the exact root 0 (`p = x·q`, here the odd
+    /// Chebyshev polynomials) had its quotient's inclusion discs computed twice, once for each
+    /// side of 0, at twice the cost. They are now asked once over the whole range, and the
+    /// answer is still the exact oracle's: every root in order, 0 in its place, and the
+    /// intervals isolating.
+    #[test]
+    fn the_discs_run_once_around_an_exact_root_0() {
+        for n in [5u32, 7, 9, 21] {
+            let p = crate::testutil::chebyshev(n).to_f64();
+            assert_eq!(p.coeffs()[0], 0.0, "T{n}(0) = 0");
+            let want = crate::testutil::stored_roots(&p, -2.0, 2.0);
+            let mut stats = RootStats::default();
+            let got = p
+                .real_roots_with(-2.0, 2.0, &RootOptions::new(1e-12), &mut stats)
+                .expect("an answer");
+            assert_eq!(got.len(), want.len(), "T{n}: {got:?}");
+            for (g, w) in got.iter().zip(&want) {
+                assert!((g - w).abs() <= 1e-12, "T{n}: {g} against {w}");
+            }
+            assert_eq!(
+                stats.inclusion_decided + stats.inclusion_undecided,
+                1,
+                "T{n}: one disc query, not one a side"
+            );
+            let mut stats = RootStats::default();
+            let ivs = p
+                .isolate_roots_with(-2.0, 2.0, &RootOptions::new(1e-12), &mut stats)
+                .expect("an answer");
+            assert_eq!(ivs.len(), want.len(), "T{n}: intervals");
+            for (iv, w) in ivs.iter().zip(&want) {
+                assert!(iv.lo <= *w && *w <= iv.hi, "T{n}: {iv:?} against {w}");
+            }
+            assert_eq!(
+                stats.inclusion_decided + stats.inclusion_undecided,
+                1,
+                "T{n}: one disc query for the intervals"
+            );
+        }
+    }
+
+    /// When an answer of the whole-range query reaches 0 (a root of the quotient closer to 0
+    /// than its bracket is wide, where 0 could not be put in order), [`around_zero`] answers
+    /// each side alone instead.
+    #[test]
+    fn an_answer_reaching_0_sends_around_zero_to_the_sides() {
+        let q = Poly::new(vec![1.0, 1.0]);
+        let mut out = vec![];
+        let mut stats = RootStats::default();
+        around_zero(
+            &q,
+            (-1.0, 1.0),
+            0.0,
+            &mut stats,
+            &mut out,
+            |_, _, _, _, out| {
+                out.extend([-0.5, 0.0]);
+                Ok(true)
+            },
+            |_, lo, hi, _, out| {
+                out.push((lo + hi) / 2.0);
+                Ok(())
+            },
+        )
+        .expect("no error");
+        assert_eq!(out, vec![-0.5, 0.0, 0.5], "the sides' answers around 0");
+        let mut out = vec![];
+        around_zero(
+            &q,
+            (-1.0, 1.0),
+            0.0,
+            &mut stats,
+            &mut out,
+            |_, _, _, _, out| {
+                out.extend([-0.5, 0.25, 0.75]);
+                Ok(true)
+            },
+            |_, _, _, _, _| panic!("the whole-range answer is used"),
+        )
+        .expect("no error");
+        assert_eq!(out, vec![-0.5, 0.0, 0.25, 0.75], "0 put in order");
     }
 }
