@@ -2018,40 +2018,37 @@ mod tests {
     /// each side alone instead.
     #[test]
     fn an_answer_reaching_0_sends_around_zero_to_the_sides() {
-        let q = Poly::new(vec![1.0, 1.0]);
-        let mut out = vec![];
-        let mut stats = RootStats::default();
-        around_zero(
-            &q,
-            (-1.0, 1.0),
-            0.0,
-            &mut stats,
-            &mut out,
-            |_, _, _, _, out| {
-                out.extend([-0.5, 0.0]);
-                Ok(true)
-            },
-            |_, lo, hi, _, out| {
-                out.push((lo + hi) / 2.0);
-                Ok(())
-            },
-        )
-        .expect("no error");
-        assert_eq!(out, vec![-0.5, 0.0, 0.5], "the sides' answers around 0");
-        let mut out = vec![];
-        around_zero(
-            &q,
-            (-1.0, 1.0),
-            0.0,
-            &mut stats,
-            &mut out,
-            |_, _, _, _, out| {
-                out.extend([-0.5, 0.25, 0.75]);
-                Ok(true)
-            },
-            |_, _, _, _, _| panic!("the whole-range answer is used"),
-        )
-        .expect("no error");
-        assert_eq!(out, vec![-0.5, 0.0, 0.25, 0.75], "0 put in order");
+        // The whole-range query answers `whole`; each side answers its midpoint.
+        let around = |whole: &[f64]| {
+            let q = Poly::new(vec![1.0, 1.0]);
+            let (mut out, mut stats) = (vec![], RootStats::default());
+            around_zero(
+                &q,
+                (-1.0, 1.0),
+                0.0,
+                &mut stats,
+                &mut out,
+                |_, _, _, _, out| {
+                    out.extend_from_slice(whole);
+                    Ok(true)
+                },
+                |_, lo, hi, _, out| {
+                    out.push((lo + hi) / 2.0);
+                    Ok(())
+                },
+            )
+            .expect("no error");
+            out
+        };
+        assert_eq!(
+            around(&[-0.5, 0.0]),
+            vec![-0.5, 0.0, 0.5],
+            "an answer at 0: the sides' answers around 0"
+        );
+        assert_eq!(
+            around(&[-0.5, 0.25, 0.75]),
+            vec![-0.5, 0.0, 0.25, 0.75],
+            "the whole range's answers, 0 put in order"
+        );
     }
 }
