@@ -54,19 +54,6 @@ impl Plane {
         }
     }
 
-    /// `F`'s terms in [`Poly3`]'s order — the constant, then `z`, `y`, `x` (exponents
-    /// ascending) — as `(coefficient, variable)` pairs (`None`: the constant), zeros included
-    /// ([`Poly3::from_terms`] drops them). [`ImplicitFn::eval_grad`] writes the same order out.
-    fn terms(&self) -> [(f64, Option<usize>); 4] {
-        let n = self.normal;
-        [
-            (self.constant, None),
-            (n.z, Some(2)),
-            (n.y, Some(1)),
-            (n.x, Some(0)),
-        ]
-    }
-
     /// The texture axes: Stam's textured plane is parallel to z = 0 and indexes the texture by
     /// x and y (Annexe B `ColTexture`); other planes get any orthonormal pair.
     fn texture_axes(&self) -> (DVec3, DVec3) {
@@ -102,11 +89,13 @@ impl ImplicitFn for Plane {
 
     fn poly(&self) -> &Poly3 {
         self.poly.get_or_init(|| {
-            let exps = |k: Option<usize>| match k {
-                None => [0, 0, 0],
-                Some(k) => std::array::from_fn(|i| u32::from(i == k)),
-            };
-            Poly3::from_terms(self.terms().map(|(c, k)| (c, exps(k))))
+            let n = self.normal;
+            Poly3::from_terms([
+                (n.x, [1, 0, 0]),
+                (n.y, [0, 1, 0]),
+                (n.z, [0, 0, 1]),
+                (self.constant, [0, 0, 0]),
+            ])
         })
     }
 
