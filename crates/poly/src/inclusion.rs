@@ -78,7 +78,8 @@ const MAX_POLISH_STEPS: u32 = 8;
 /// longer than the first) cost Wilkinson-20 34 %.
 const POLISH_WANDERING_AFTER: u32 = 2;
 
-/// The factor by which each step of the real polish must shrink from the third on
+/// The factor by which each step of the real polish must shrink from the third on, relative
+/// (a step's length against the one before; a heuristic for stopping, never for an answer)
 /// ([`POLISH_WANDERING_AFTER`]); 0.5 cost Wilkinson-20 31 % and saved at most 0.5 % more
 /// elsewhere.
 const POLISH_CONTRACTION: f64 = 0.9;
