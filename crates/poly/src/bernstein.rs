@@ -98,7 +98,7 @@ const MAX_DEPTH: u16 = 52;
 /// Most subdivisions tried in one query, over all its runs, before giving up on `f64` (a
 /// polynomial with many clustered roots is cheaper to isolate exactly than to subdivide for
 /// ever).
-const MAX_SPLITS: u32 = 4000;
+pub(crate) const MAX_SPLITS: u32 = 4000;
 
 /// A sub-interval `[u0, u1]` of `[0, 1]` with the Bernstein coefficients of `q` on it.
 #[derive(Clone, Debug)]

@@ -85,8 +85,14 @@ pub(crate) struct CertifiedSearch<'p> {
     /// too (its de Casteljau run costs little more than an `f64` run that would get stuck
     /// the same way; `paper-notes/isolation.md`).
     went_adaptive: bool,
-    /// Subdivisions so far, over all runs.
+    /// Subdivisions so far, over all runs (a budgeted search starts its count at
+    /// `MAX_SPLITS` less its budget).
     splits: u32,
+    /// A budgeted search ([`CertifiedSearch::run_budgeted`]): one run, and it gives up where
+    /// the plain search would go to adaptive precision or exact arithmetic.
+    budgeted: bool,
+    /// The budgeted search gave up; what it found is incomplete.
+    gave_up: bool,
     /// The exact oracle of the stored polynomial, built on first need.
     /// (Boxed: it is rare, and the search is returned by value on every query.)
     exact: Option<Box<ExactOracle>>,
@@ -128,10 +134,43 @@ impl<'p> CertifiedSearch<'p> {
     #[inline(always)]
     pub(crate) fn run_with_signs(
         c: &'p [f64],
+        range: (f64, f64),
+        signs: (i8, i8),
+        first_only: bool,
+        slacks: (Slack<'p>, f64),
+        stats: &mut RootStats,
+    ) -> Self {
+        Self::search(c, range, signs, first_only, slacks, None, stats)
+    }
+
+    /// The roots of `p` in `(lo, hi]` (both finite, `lo < hi`) by one `f64` run with at most
+    /// `budget` subdivisions: `None` when that does not answer the query — the budget spent,
+    /// or a node whose sign `f64` cannot certify, which the plain search would give a fresh
+    /// run, adaptive precision or exact arithmetic — having done no other work (but a far
+    /// cluster's re-expansion, which is itself `f64` runs). The all-roots queries try it
+    /// before the inclusion discs (`paper-notes/isolation.md`, "Subdivision first, on a
+    /// budget").
+    pub(crate) fn run_budgeted(
+        c: &'p [f64],
+        lo: f64,
+        hi: f64,
+        budget: u32,
+        stats: &mut RootStats,
+    ) -> Option<Self> {
+        let signs = end_signs(c, lo, hi, Slack::NONE, 0.0);
+        let slacks = (Slack::NONE, 0.0);
+        let search = Self::search(c, (lo, hi), signs, false, slacks, Some(budget), stats);
+        (!search.gave_up).then_some(search)
+    }
+
+    #[inline(always)]
+    fn search(
+        c: &'p [f64],
         (lo, hi): (f64, f64),
         signs: (i8, i8),
         first_only: bool,
         (slack, range_slack): (Slack<'p>, f64),
+        budget: Option<u32>,
         stats: &mut RootStats,
     ) -> Self {
         let mut search = CertifiedSearch {
@@ -139,11 +178,15 @@ impl<'p> CertifiedSearch<'p> {
             first_only,
             runs_left: if slack.is_some() {
                 MAX_SLACK_RUNS
+            } else if budget.is_some() {
+                1
             } else {
                 MAX_RUNS
             },
             went_adaptive: false,
-            splits: 0,
+            splits: budget.map_or(0, |b| bernstein::MAX_SPLITS.saturating_sub(b)),
+            budgeted: budget.is_some(),
+            gave_up: false,
             exact: None,
             slack,
             top_slack: (lo.abs().max(hi.abs()), range_slack),
@@ -324,6 +367,10 @@ impl<'p> CertifiedSearch<'p> {
     /// decide is isolated exactly. True when the search is over.
     /// With a slack, the search stops here instead ([`Self::slack_limited`]).
     fn adaptive(&mut self, lo: f64, hi: f64, s: (i8, i8), stats: &mut RootStats) -> bool {
+        if self.budgeted {
+            self.gave_up = true;
+            return true;
+        }
         if self.slack.is_some() {
             self.slack_limited = Some((lo, hi));
             return true;
@@ -393,6 +440,10 @@ impl<'p> CertifiedSearch<'p> {
     /// Exact isolation of `(lo, hi]` (finite `f64` ends, [`ExactOracle`]); true when the
     /// search is over. With a slack, the search stops here instead ([`Self::slack_limited`]).
     fn exact(&mut self, lo: f64, hi: f64, stats: &mut RootStats) -> bool {
+        if self.budgeted {
+            self.gave_up = true;
+            return true;
+        }
         if self.slack.is_some() {
             self.slack_limited = Some((lo, hi));
             return true;

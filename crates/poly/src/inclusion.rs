@@ -1516,16 +1516,18 @@ mod tests {
     /// Tolerance of the answers compared here (absolute, on roots of size ≤ 21).
     const X_TOL: f64 = 1e-12;
 
-    /// The query of `stats` was answered by the discs alone: decided, nothing left undecided,
-    /// nothing subdivided.
+    /// The query of `stats` was answered by the discs alone: decided, nothing left undecided
+    /// or subdivided after them, and not by the budgeted subdivision tried before them
+    /// (whose given-up splits may count in `subdivisions`).
     fn assert_decided_by_discs(stats: &RootStats, what: &str) {
         assert_eq!(
             (
                 stats.inclusion_decided,
                 stats.inclusion_undecided,
-                stats.subdivisions
+                stats.inclusion_subranges,
+                stats.subdivided_first
             ),
-            (1, 0, 0),
+            (1, 0, 0, 0),
             "{what}: decided by the discs alone: {stats:?}"
         );
     }

@@ -461,6 +461,10 @@ impl Poly<f64> {
             stats,
             |_, b, _| RootInterval { lo: b.lo, hi: b.hi },
             |r| RootInterval { lo: r, hi: r },
+            |search, _, out| {
+                out.extend(found_intervals(search));
+                Ok(())
+            },
             |lo, hi, s, out| {
                 at_zero(lo, hi, split_at_zero, |lo, hi| {
                     self.isolate_roots_subdivide(lo, hi, opts, s, out)
@@ -481,13 +485,7 @@ impl Poly<f64> {
         out: &mut Vec<RootInterval<f64>>,
     ) -> Result<(), RootError> {
         match self.isolate_inner(a, b, opts, Slack::NONE, stats)? {
-            Isolation::Certified(search) => {
-                out.extend(search.found.iter().map(|f| match f {
-                    Found::Bracket(b) => RootInterval { lo: b.lo, hi: b.hi },
-                    Found::Exact(iv) => iv.clone(),
-                    Found::Shifted(i, b) => search.shifts[*i as usize].interval(b),
-                }));
-            }
+            Isolation::Certified(search) => out.extend(found_intervals(&search)),
             Isolation::Exact(_, ivs) | Isolation::Heuristic(ivs) => out.extend(ivs),
         }
         Ok(())
@@ -662,9 +660,36 @@ impl Poly<f64> {
             stats,
             refine,
             |r| r,
+            |search, s, out| self.push_refined(search, opts, slack, s, out),
             subdivide,
             out,
         )
+    }
+
+    /// The roots the certified search `search` of `self` found, refined and appended to
+    /// `out`.
+    fn push_refined(
+        &self,
+        search: &CertifiedSearch<'_>,
+        opts: &RootOptions,
+        slack: Slack<'_>,
+        stats: &mut RootStats,
+        out: &mut Vec<f64>,
+    ) -> Result<(), RootError> {
+        if let Some((lo, hi)) = search.slack_limited {
+            return Err(RootError::SlackLimited { lo, hi });
+        }
+        for f in &search.found {
+            out.push(refine_found(
+                Stored::owned(self),
+                search,
+                f,
+                opts,
+                slack,
+                stats,
+            )?);
+        }
+        Ok(())
     }
 
     /// The roots in `(a, b]` by subdivision (the certified search, or the method `opts`
@@ -679,15 +704,7 @@ impl Poly<f64> {
         out: &mut Vec<f64>,
     ) -> Result<(), RootError> {
         match self.isolate_inner(a, b, opts, slack, stats)? {
-            Isolation::Certified(search) => {
-                if let Some((lo, hi)) = search.slack_limited {
-                    return Err(RootError::SlackLimited { lo, hi });
-                }
-                for f in &search.found {
-                    let p = Stored::owned(self);
-                    out.push(refine_found(p, &search, f, opts, slack, stats)?);
-                }
-            }
+            Isolation::Certified(search) => self.push_refined(&search, opts, slack, stats, out)?,
             Isolation::Exact(seq, ivs) => {
                 out.extend(
                     ivs.iter()
@@ -759,6 +776,20 @@ impl Poly<f64> {
     }
 }
 
+/// Splits a degree that the subdivision tried before the inclusion discs may make
+/// ([`inclusion_first`]): `2n` for degree `n`. A polynomial with few real roots far apart
+/// (a ray's, a random one's) is isolated in a few splits; one with many real roots or exact
+/// roots on dyadic points (Wilkinson's, multiple and clustered roots) gives up early, the
+/// waste bounded by one `f64` run of at most `2n` de Casteljau splits. Measured against
+/// `n`, `4n` and `8n` in `paper-notes/isolation.md`, "Subdivision first, on a budget": the
+/// larger budgets gained little where the attempt answers and cost more where it gives up.
+const SUBDIVISION_FIRST_SPLITS: u32 = 2;
+
+/// Highest degree whose all-roots queries try the budgeted subdivision first. Above it a
+/// single `f64` run within the budget answered few of the measured queries (the whole
+/// range's error bound grows with the degree), and the attempt cost the others 4–8 %.
+const SUBDIVISION_FIRST_MAX_DEGREE: usize = 10;
+
 /// The all-roots queries' first try (issue 11): inclusion discs around simultaneous
 /// approximations of every root (`inclusion.rs`), for the default certified method without
 /// a value slack from degree [`INCLUSION_MIN_DEGREE`] on. `Ok(true)` when they answered the
@@ -766,6 +797,11 @@ impl Poly<f64> {
 /// multiple root a cluster of discs certified (`inclusion.rs`, step 4) through `point`, and
 /// each part of the range they left undecided through `subdivide` (on that part alone), all
 /// in order.
+/// Before the discs, a subdivision in `f64` with a budget of [`SUBDIVISION_FIRST_SPLITS`]
+/// splits a degree ([`CertifiedSearch::run_budgeted`]): when it answers, its search goes
+/// through `answer` and the discs are not computed (counted in
+/// [`RootStats::subdivided_first`]); few real roots far apart, as on a ray or a random
+/// polynomial, take it a few splits, where the discs approximate every complex root.
 /// `Ok(false)` leaves `out` alone and the caller answers by subdivision. Counted in
 /// [`RootStats::inclusion_decided`] (no part left), [`RootStats::inclusion_undecided`]
 /// (some or all of the range subdivided) and [`RootStats::inclusion_subranges`].
@@ -782,6 +818,7 @@ fn inclusion_first<V>(
     stats: &mut RootStats,
     mut emit: impl FnMut(&Poly<f64>, Bracket, &mut RootStats) -> V,
     point: impl Fn(f64) -> V,
+    answer: impl FnOnce(&CertifiedSearch<'_>, &mut RootStats, &mut Vec<V>) -> Result<(), RootError>,
     mut subdivide: impl FnMut(f64, f64, &mut RootStats, &mut Vec<V>) -> Result<(), RootError>,
     out: &mut Vec<V>,
 ) -> Result<bool, RootError> {
@@ -798,6 +835,24 @@ fn inclusion_first<V>(
         // A narrow range with one root or none (the Gröbner path's eliminants on a
         // sub-patch): the subdivision's first classification is cheaper than the discs.
         return Ok(false);
+    }
+    // Not at full precision (`x_tol = rel_tol = 0`): the discs' approximations come polished
+    // to the last bit, where a subdivision's bracket must be refined to it, near a cluster
+    // with adaptive signs (the Orellana–De Michele quartics, `paper-notes/isolation.md`).
+    let full_precision = opts.x_tol == 0.0 && opts.rel_tol == 0.0;
+    if p.degree() <= SUBDIVISION_FIRST_MAX_DEGREE
+        && !full_precision
+        && let Some(search) = CertifiedSearch::run_budgeted(
+            p.coeffs(),
+            lo,
+            hi,
+            SUBDIVISION_FIRST_SPLITS * p.degree() as u32,
+            stats,
+        )
+    {
+        stats.subdivided_first += 1;
+        answer(&search, stats, out)?;
+        return Ok(true);
     }
     // One query for the statistics: at most one exact fallback, though several parts may
     // have needed one (as around an exact root 0).
@@ -825,6 +880,17 @@ fn inclusion_first<V>(
         stats.inclusion_undecided += 1;
     }
     Ok(answered)
+}
+
+/// The isolating intervals of the roots the certified search `search` found, in order.
+fn found_intervals<'a>(
+    search: &'a CertifiedSearch<'_>,
+) -> impl Iterator<Item = RootInterval<f64>> + 'a {
+    search.found.iter().map(|f| match f {
+        Found::Bracket(b) => RootInterval { lo: b.lo, hi: b.hi },
+        Found::Exact(iv) => iv.clone(),
+        Found::Shifted(i, b) => search.shifts[*i as usize].interval(b),
+    })
 }
 
 /// The isolation result, before conversion or refinement.
@@ -1969,9 +2035,9 @@ mod tests {
                 assert!((g - w).abs() <= 1e-12, "T{n}: {g} against {w}");
             }
             assert_eq!(
-                stats.inclusion_decided + stats.inclusion_undecided,
+                stats.inclusion_decided + stats.inclusion_undecided + stats.subdivided_first,
                 1,
-                "T{n}: one disc query, not one a side"
+                "T{n}: one query of the quotient (discs, or the subdivision first), not one a side"
             );
             let mut stats = RootStats::default();
             let ivs = p
@@ -1982,11 +2048,112 @@ mod tests {
                 assert!(iv.lo <= *w && *w <= iv.hi, "T{n}: {iv:?} against {w}");
             }
             assert_eq!(
-                stats.inclusion_decided + stats.inclusion_undecided,
+                stats.inclusion_decided + stats.inclusion_undecided + stats.subdivided_first,
                 1,
-                "T{n}: one disc query for the intervals"
+                "T{n}: one query of the quotient for the intervals"
             );
         }
+    }
+
+    /// The exact roots of the stored `p` in `(lo, hi]` against an all-roots query's values
+    /// (within `x_tol`) and its isolating intervals; the statistics of the two queries.
+    fn all_roots_against_the_oracle(
+        p: &Poly<f64>,
+        lo: f64,
+        hi: f64,
+        x_tol: f64,
+    ) -> (RootStats, RootStats) {
+        let want = crate::testutil::stored_roots(p, lo, hi);
+        let mut values = RootStats::default();
+        let got = p
+            .real_roots_with(lo, hi, &RootOptions::new(x_tol), &mut values)
+            .expect("an answer");
+        assert_eq!(got.len(), want.len(), "{got:?} against {want:?}");
+        for (g, w) in got.iter().zip(&want) {
+            assert!((g - w).abs() <= x_tol, "{g} against {w}");
+        }
+        let mut intervals = RootStats::default();
+        let ivs = p
+            .isolate_roots_with(lo, hi, &RootOptions::new(x_tol), &mut intervals)
+            .expect("an answer");
+        assert_eq!(ivs.len(), want.len(), "{ivs:?} against {want:?}");
+        for (iv, w) in ivs.iter().zip(&want) {
+            assert!(iv.lo <= *w && *w <= iv.hi, "{iv:?} against {w}");
+        }
+        (values, intervals)
+    }
+
+    /// Few real roots far apart — a ray through a torus, restricted at its bounding sphere's
+    /// entry — take the budgeted subdivision a few splits: it answers the all-roots queries,
+    /// values and intervals, and the inclusion discs are not computed. Fails if the attempt
+    /// is not made or gives up.
+    #[test]
+    fn few_real_roots_are_answered_by_the_budgeted_subdivision() {
+        // (x² + y² + z² + R² − r²)² − 4R²(x² + y²), R = 2, r = 1, along the ray from
+        // (−3.2, 0.1, 0.05) in direction (1, 0, 0): roots near 0.2, 2.2, 4.2 and 6.2.
+        let (ox, oy, oz) = (-3.2, 0.1, 0.05);
+        let k = oy * oy + oz * oz + 3.0;
+        // s = x² + k along the ray x = ox + t: ((ox + t)² + k)² − 16((ox + t)² + oy²).
+        let sq = Poly::new(vec![ox * ox, 2.0 * ox, 1.0]);
+        let s_poly = &sq + &Poly::new(vec![k]);
+        let p =
+            &(&s_poly * &s_poly) - &(&(&sq + &Poly::new(vec![oy * oy])) * &Poly::new(vec![16.0]));
+        let (values, intervals) = all_roots_against_the_oracle(&p, 0.0, 8.0, 1e-12);
+        for (stats, what) in [(values, "values"), (intervals, "intervals")] {
+            assert_eq!(
+                (
+                    stats.subdivided_first,
+                    stats.inclusion_decided,
+                    stats.inclusion_undecided
+                ),
+                (1, 0, 0),
+                "{what}: {stats:?}"
+            );
+            assert!(
+                stats.subdivisions <= u64::from(SUBDIVISION_FIRST_SPLITS) * 4,
+                "{what}: within the budget: {stats:?}"
+            );
+        }
+    }
+
+    /// Integer roots on a power-of-two range sit on the subdivision's dyadic points, where
+    /// no `f64` sign is certain: the budgeted subdivision gives up after at most its budget of
+    /// splits, and the discs answer — exactly, as before it was tried. Fails if the attempt
+    /// outruns its budget or leaves its partial answer in the result.
+    #[test]
+    fn roots_on_dyadic_points_give_the_budget_up_for_the_discs() {
+        let p = crate::testutil::wilkinson(4).to_f64();
+        let (values, intervals) = all_roots_against_the_oracle(&p, -32.0, 32.0, 1e-12);
+        for (stats, what) in [(values, "values"), (intervals, "intervals")] {
+            assert_eq!(
+                (stats.subdivided_first, stats.inclusion_decided),
+                (0, 1),
+                "{what}: {stats:?}"
+            );
+            assert!(
+                stats.subdivisions <= u64::from(SUBDIVISION_FIRST_SPLITS) * 4,
+                "{what}: the attempt stopped at its budget: {stats:?}"
+            );
+        }
+        let exact = p.real_roots(-32.0, 32.0, 1e-12).expect("an answer");
+        assert_eq!(exact, [1.0, 2.0, 3.0, 4.0], "the discs' exact answer");
+    }
+
+    /// Above [`SUBDIVISION_FIRST_MAX_DEGREE`] the subdivision is not tried first, however
+    /// few the real roots: `x¹¹ − 2` has one.
+    #[test]
+    fn high_degrees_go_to_the_discs_first() {
+        let mut c = vec![0.0; 12];
+        c[0] = -2.0;
+        c[11] = 1.0;
+        let p = Poly::new(c);
+        let (values, _) = all_roots_against_the_oracle(&p, -4.0, 4.0, 1e-12);
+        assert_eq!(values.subdivided_first, 0, "{values:?}");
+        assert_eq!(
+            values.inclusion_decided + values.inclusion_undecided,
+            1,
+            "{values:?}"
+        );
     }
 
     /// A part the discs leave undecided around an exact root 0 is subdivided on each side of

@@ -94,6 +94,12 @@ pub struct RootStats {
     /// nothing; `paper-notes/isolation.md`, "Undecided parts"). A query the discs could not
     /// narrow at all is subdivided whole and counts none here.
     pub inclusion_subranges: u64,
+    /// All-roots queries (or pieces) answered by a subdivision in `f64` with a budget of
+    /// splits, tried before the inclusion discs, which were then not needed
+    /// (`paper-notes/isolation.md`, "Subdivision first, on a budget"). A query whose budgeted
+    /// subdivision gave up goes on to the discs and is counted there; its subdivisions stay
+    /// in [`subdivisions`](Self::subdivisions).
+    pub subdivided_first: u64,
 }
 
 impl RootStats {
@@ -121,6 +127,7 @@ impl RootStats {
         self.inclusion_decided += other.inclusion_decided;
         self.inclusion_undecided += other.inclusion_undecided;
         self.inclusion_subranges += other.inclusion_subranges;
+        self.subdivided_first += other.subdivided_first;
     }
 
     /// Fraction of queries that fell back to exact isolation (0 when there were no queries).
@@ -188,6 +195,7 @@ mod tests {
         a.shifted_pieces = 2;
         a.cluster_shifts = 3;
         a.inclusion_subranges = 8;
+        a.subdivided_first = 11;
         let mut b = a.clone();
         b.subdivisions = 7;
         b.refine_evals = 3;
@@ -225,6 +233,7 @@ mod tests {
             (10, 12, 16),
             "inclusion counters summed"
         );
+        assert_eq!(b.subdivided_first, 22, "subdivisions first summed");
         assert_eq!(b.fallback_rate(), 0.5, "2 of 4");
         let mut c = RootStats::default();
         c += &b;
