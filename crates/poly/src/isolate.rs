@@ -2025,33 +2025,15 @@ mod tests {
         for n in [5u32, 7, 9, 21] {
             let p = crate::testutil::chebyshev(n).to_f64();
             assert_eq!(p.coeffs()[0], 0.0, "T{n}(0) = 0");
-            let want = crate::testutil::stored_roots(&p, -2.0, 2.0);
-            let mut stats = RootStats::default();
-            let got = p
-                .real_roots_with(-2.0, 2.0, &RootOptions::new(1e-12), &mut stats)
-                .expect("an answer");
-            assert_eq!(got.len(), want.len(), "T{n}: {got:?}");
-            for (g, w) in got.iter().zip(&want) {
-                assert!((g - w).abs() <= 1e-12, "T{n}: {g} against {w}");
+            let (values, intervals) = all_roots_against_the_oracle(&p, -2.0, 2.0, 1e-12);
+            for (stats, what) in [(values, "values"), (intervals, "intervals")] {
+                assert_eq!(
+                    stats.inclusion_decided + stats.inclusion_undecided + stats.subdivided_first,
+                    1,
+                    "T{n}, {what}: one query of the quotient (the discs, or the subdivision \
+                     first), not one a side"
+                );
             }
-            assert_eq!(
-                stats.inclusion_decided + stats.inclusion_undecided + stats.subdivided_first,
-                1,
-                "T{n}: one query of the quotient (discs, or the subdivision first), not one a side"
-            );
-            let mut stats = RootStats::default();
-            let ivs = p
-                .isolate_roots_with(-2.0, 2.0, &RootOptions::new(1e-12), &mut stats)
-                .expect("an answer");
-            assert_eq!(ivs.len(), want.len(), "T{n}: intervals");
-            for (iv, w) in ivs.iter().zip(&want) {
-                assert!(iv.lo <= *w && *w <= iv.hi, "T{n}: {iv:?} against {w}");
-            }
-            assert_eq!(
-                stats.inclusion_decided + stats.inclusion_undecided + stats.subdivided_first,
-                1,
-                "T{n}: one query of the quotient for the intervals"
-            );
         }
     }
 
