@@ -147,9 +147,9 @@ impl<'p> CertifiedSearch<'p> {
     /// `budget` subdivisions: `None` when that does not answer the query — the budget spent,
     /// or a node whose sign `f64` cannot certify, which the plain search would give a fresh
     /// run, adaptive precision or exact arithmetic — having done no other work (but a far
-    /// cluster's re-expansion, which is itself `f64` runs). The all-roots queries try it
-    /// before the inclusion discs (`paper-notes/isolation.md`, "Subdivision first, on a
-    /// budget").
+    /// cluster's re-expansion, whose `f64` search spends the same budget). The all-roots
+    /// queries try it before the inclusion discs (`paper-notes/isolation.md`, "Subdivision
+    /// first, on a budget").
     pub(crate) fn run_budgeted(
         c: &'p [f64],
         lo: f64,
@@ -176,10 +176,10 @@ impl<'p> CertifiedSearch<'p> {
         let mut search = CertifiedSearch {
             c,
             first_only,
-            runs_left: if slack.is_some() {
-                MAX_SLACK_RUNS
-            } else if budget.is_some() {
+            runs_left: if budget.is_some() {
                 1
+            } else if slack.is_some() {
+                MAX_SLACK_RUNS
             } else {
                 MAX_RUNS
             },
@@ -413,15 +413,24 @@ impl<'p> CertifiedSearch<'p> {
         let slack_fn = |r: f64| shift.slack(r);
         let slack = Slack::new(&slack_fn);
         let range_slack = slack.at(u_lo.abs().max(u_hi.abs()));
-        let sub = CertifiedSearch::run_with_signs(
+        // A budgeted search's re-expansion spends the same budget (its split count starts at
+        // this search's and is carried back).
+        let budget = self
+            .budgeted
+            .then(|| bernstein::MAX_SPLITS.saturating_sub(self.splits));
+        let sub = CertifiedSearch::search(
             &shift.q,
             (u_lo, u_hi),
             s,
             self.first_only,
             (slack, range_slack),
+            budget,
             stats,
         );
-        if sub.slack_limited.is_some() {
+        if self.budgeted {
+            self.splits = sub.splits;
+        }
+        if sub.slack_limited.is_some() || sub.gave_up {
             return None;
         }
         // At most one re-expansion per adaptive piece, and the run budget bounds those.
@@ -534,6 +543,30 @@ mod tests {
     use super::*;
     use crate::root_options::RootOptions;
     use crate::testutil::{chebyshev, planted_f64, stored_roots};
+
+    /// The budgeted search answers a far cluster from its centroid, and the re-expansion's
+    /// own search spends the attempt's budget: with a budget of one split both give up, where
+    /// a search with a budget of its own would answer. Fails if the re-expansion's search is
+    /// not held to the budget.
+    #[test]
+    fn a_far_clusters_search_spends_the_attempts_budget() {
+        let p = crate::testutil::torus_ray(-1e4);
+        let (lo, hi) = (0.0, 1e4 + 8.0);
+        let mut stats = RootStats::default();
+        let search = CertifiedSearch::run_budgeted(p.coeffs(), lo, hi, 8, &mut stats)
+            .expect("answered within 8 splits");
+        assert_eq!(search.found.len(), 4, "four roots: {stats:?}");
+        assert!(
+            stats.subdivisions >= 2,
+            "the re-expansion's search needs more than one split: {stats:?}"
+        );
+        let mut stats = RootStats::default();
+        assert!(
+            CertifiedSearch::run_budgeted(p.coeffs(), lo, hi, 1, &mut stats).is_none(),
+            "one split is not enough: {stats:?}"
+        );
+        assert!(stats.subdivisions <= 1, "at most the budget: {stats:?}");
+    }
 
     fn assert_matches_exact(p: &Poly<f64>, lo: f64, hi: f64, stats: &mut RootStats) {
         let x_tol = 1e-12;

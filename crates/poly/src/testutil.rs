@@ -122,6 +122,18 @@ fn refined_relative(seq: &SturmSequence<Rat>, iv: &RootInterval<Rat>) -> RootInt
     }
 }
 
+/// The torus `(x² + y² + z² + R² − r²)² − 4R²(x² + y²)` (`R = 2`, `r = 1`, axis `z`) along
+/// the ray from `(x0, 0.1, 0.05)` in direction `(1, 0, 0)`: with `x = x0 + t`,
+/// `((x0 + t)² + k)² − 16((x0 + t)² + 0.01)`, `k = 0.01 + 0.0025 + 3`. Its roots are where the
+/// ray crosses the tube, near `x = ±1, ±3`; from `x0 = −10⁴` they cluster far from 0 against
+/// their spread.
+pub fn torus_ray(x0: f64) -> Poly<f64> {
+    let (oy, oz) = (0.1, 0.05);
+    let sq = Poly::new(vec![x0 * x0, 2.0 * x0, 1.0]);
+    let s = &sq + &Poly::new(vec![oy * oy + oz * oz + 3.0]);
+    &(&s * &s) - &(&(&sq + &Poly::new(vec![oy * oy])) * &Poly::new(vec![16.0]))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
