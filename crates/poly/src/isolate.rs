@@ -2069,49 +2069,34 @@ mod tests {
 
     /// Few real roots far apart — a ray through a torus, restricted at its bounding sphere's
     /// entry — take the budgeted subdivision a few splits: it answers the all-roots queries,
-    /// values and intervals, and the inclusion discs are not computed. Fails if the attempt
-    /// is not made or gives up.
+    /// values and intervals, within its `2n` splits, and the inclusion discs are not computed.
+    /// Restricted 10⁴ units away, the four roots cluster far from 0 and are answered from
+    /// their centroid (the range re-expanded there), within the same budget. (That the
+    /// re-expansion's search spends that budget is
+    /// `certified::tests::a_far_clusters_search_spends_the_attempts_budget`.) Fails if the
+    /// attempt is not made or gives up.
     #[test]
     fn few_real_roots_are_answered_by_the_budgeted_subdivision() {
-        // Roots near 0.2, 2.2, 4.2 and 6.2.
-        let (values, intervals) =
-            all_roots_against_the_oracle(&crate::testutil::torus_ray(-3.2), 0.0, 8.0, 1e-12);
-        for (stats, what) in [(values, "values"), (intervals, "intervals")] {
-            assert_eq!(
-                (
-                    stats.subdivided_first,
-                    stats.inclusion_decided,
-                    stats.inclusion_undecided
-                ),
-                (1, 0, 0),
-                "{what}: {stats:?}"
-            );
-            assert!(
-                stats.subdivisions <= u64::from(SUBDIVISION_FIRST_SPLITS) * 4,
-                "{what}: within the budget: {stats:?}"
-            );
-        }
-    }
-
-    /// A ray restricted 10⁴ units from the torus: its four roots cluster far from 0, and the
-    /// budgeted subdivision answers the query from their centroid (the range re-expanded
-    /// there, searched with the re-expansion's value slack) within `2n` splits in all. (That
-    /// the re-expansion's search spends the same budget is
-    /// `certified::tests::a_far_clusters_search_spends_the_attempts_budget`.)
-    #[test]
-    fn a_far_cluster_is_answered_within_the_same_budget() {
-        let p = crate::testutil::torus_ray(-1e4);
-        let (values, intervals) = all_roots_against_the_oracle(&p, 0.0, 1e4 + 8.0, 1e-12);
-        for (stats, what) in [(values, "values"), (intervals, "intervals")] {
-            assert_eq!(
-                (stats.subdivided_first, stats.cluster_shifts),
-                (1, 1),
-                "{what}: answered first, from the centroid: {stats:?}"
-            );
-            assert!(
-                stats.subdivisions <= u64::from(SUBDIVISION_FIRST_SPLITS) * 4,
-                "{what}: within the budget: {stats:?}"
-            );
+        // (start of the ray, end of the range, far-cluster re-expansions)
+        for (x0, hi, shifts) in [(-3.2, 8.0, 0), (-1e4, 1e4 + 8.0, 1)] {
+            let p = crate::testutil::torus_ray(x0);
+            let (values, intervals) = all_roots_against_the_oracle(&p, 0.0, hi, 1e-12);
+            for (stats, what) in [(values, "values"), (intervals, "intervals")] {
+                assert_eq!(
+                    (
+                        stats.subdivided_first,
+                        stats.inclusion_decided,
+                        stats.inclusion_undecided,
+                        stats.cluster_shifts
+                    ),
+                    (1, 0, 0, shifts),
+                    "from {x0}, {what}: {stats:?}"
+                );
+                assert!(
+                    stats.subdivisions <= u64::from(SUBDIVISION_FIRST_SPLITS) * 4,
+                    "from {x0}, {what}: within the budget: {stats:?}"
+                );
+            }
         }
     }
 
