@@ -20,6 +20,9 @@
 //! one `f64` spacing) are isolated by exact Sturm counts on the stored polynomial (the
 //! sequence is built once per query, counted in [`RootStats::exact_fallbacks`]). See
 //! `paper-notes/isolation.md`, "Restarts and local exact isolation" and "Adaptive precision".
+//! [`CertifiedSearch::run_budgeted`] is that search's first run alone, with a budget of
+//! splits and nothing after it: the all-roots queries' cheap first try ("Subdivision first,
+//! on a budget").
 //!
 //! [`IsolationMethod::Bernstein`]: crate::IsolationMethod::Bernstein
 
