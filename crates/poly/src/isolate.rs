@@ -440,9 +440,9 @@ impl Poly<f64> {
         self.isolate_roots_subdivide(a, b, opts, stats, out)
     }
 
-    /// [`inclusion_first`] for [`Poly::isolate_roots_push`]: `Ok(true)` when the discs
-    /// answered (undecided parts subdivided, each split at 0 when `split_at_zero`: see
-    /// [`around_zero`]).
+    /// [`inclusion_first`] for [`Poly::isolate_roots_push`]: `Ok(true)` when the budgeted
+    /// subdivision or the discs answered (the discs' undecided parts subdivided, each split at
+    /// 0 when `split_at_zero`: see [`around_zero`]).
     fn isolate_roots_by_discs(
         &self,
         a: f64,
@@ -626,9 +626,9 @@ impl Poly<f64> {
         self.real_roots_subdivide(a, b, opts, slack, stats, out)
     }
 
-    /// [`inclusion_first`] for [`Poly::real_roots_push`]: `Ok(true)` when the discs answered
-    /// (roots refined, undecided parts subdivided, each split at 0 when `split_at_zero`:
-    /// see [`around_zero`]).
+    /// [`inclusion_first`] for [`Poly::real_roots_push`]: `Ok(true)` when the budgeted
+    /// subdivision or the discs answered (roots refined, the discs' undecided parts
+    /// subdivided, each split at 0 when `split_at_zero`: see [`around_zero`]).
     #[allow(
         clippy::too_many_arguments,
         reason = "the query's parts, passed through"
